@@ -1,0 +1,157 @@
+# libselftalk - language-assisted evolutionary robotics (see README.md)
+#
+#   make            library (static + shared) and apps
+#   make run        set-up, build, the main job
+#   make test       set-up, build, all tests (quick)
+#   make asan       tests under AddressSanitizer + UBSan
+#   make valgrind   unit tests under valgrind memcheck
+#   make bench      benchmarks
+#   make install PREFIX=/usr/local
+
+PREFIX ?= /usr/local
+CC ?= cc
+CXX ?= c++
+BUILD ?= build
+APPDIR ?= apps
+OPT ?= -O2 -g
+SAN ?=
+WERROR ?=
+
+PKGS_CORE := inih
+PKGS_SIM := ode ccd urdfdom assimp eigen3
+PKGS_TEST := cunit
+
+WARN := -Wall -Wextra -Wpedantic $(if $(WERROR),-Werror)
+CPPFLAGS_ALL := -Iinclude -Ilib $(shell pkg-config --cflags $(PKGS_CORE) $(PKGS_SIM) 2>/dev/null)
+CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(CFLAGS)
+CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
+LIBS_CORE := $(shell pkg-config --libs $(PKGS_CORE) 2>/dev/null) -lm
+LIBS_SIM := $(shell pkg-config --libs $(PKGS_SIM) 2>/dev/null) -lstdc++ -lgomp
+LIBS_TEST := $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null)
+
+# the core needs no simulator: a robot controller can link the network, GA and config alone
+CORE_MODULES := base rng config genome net ga
+CORE_SRC := $(CORE_MODULES:%=lib/%.c)
+SIM_SRC := $(filter-out $(CORE_SRC),$(wildcard lib/*.c)) $(wildcard lib/*.cpp)
+CORE_OBJ := $(CORE_SRC:lib/%.c=$(BUILD)/obj/%.o)
+SIM_OBJ := $(patsubst lib/%,$(BUILD)/obj/%.o,$(basename $(SIM_SRC)))
+
+CORE_A := $(BUILD)/libselftalk-core.a
+CORE_SO := $(BUILD)/libselftalk-core.so
+FULL_A := $(BUILD)/libselftalk.a
+FULL_SO := $(BUILD)/libselftalk.so
+
+APP_SRC := $(wildcard apps/*.c)
+APP_COMMON := apps/app_common.c
+APP_MAINS := $(filter-out $(APP_COMMON),$(APP_SRC))
+APPS := $(APP_MAINS:apps/%.c=$(APPDIR)/%)
+
+TEST_SRC := $(wildcard tests/test_*.c)
+TEST_BIN := $(BUILD)/run_tests
+
+HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*.h)
+
+DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
+  libassimp-dev libcunit1-dev libinih-dev python3 valgrind
+
+.PHONY: all deps run test test-only asan valgrind bench install uninstall clean
+.DELETE_ON_ERROR:
+
+all: $(CORE_A) $(CORE_SO) $(FULL_A) $(FULL_SO) $(APPS)
+
+# installs the Debian packages the project needs; does nothing when they are present
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "make deps: installing$$missing"; \
+	  if [ "$$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing; \
+	fi
+
+$(BUILD)/obj/%.o: lib/%.c $(HEADERS) | $(BUILD)/obj
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -c $< -o $@
+
+$(BUILD)/obj/%.o: lib/%.cpp $(HEADERS) | $(BUILD)/obj
+	$(CXX) $(CPPFLAGS_ALL) $(CXXFLAGS_ALL) -c $< -o $@
+
+$(BUILD)/obj $(BUILD)/tobj:
+	mkdir -p $@
+
+$(CORE_A): $(CORE_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(FULL_A): $(CORE_OBJ) $(SIM_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(CORE_SO): $(CORE_OBJ)
+	$(CC) -shared $(SAN) -Wl,-soname,libselftalk-core.so.0 -o $@ $^ $(LIBS_CORE)
+
+$(FULL_SO): $(CORE_OBJ) $(SIM_OBJ)
+	$(CXX) -shared $(SAN) -fopenmp -Wl,-soname,libselftalk.so.0 -o $@ $^ $(LIBS_SIM) $(LIBS_CORE)
+
+# apps link the static library: they run from the source tree without LD_LIBRARY_PATH
+$(APPDIR)/%: apps/%.c $(APP_COMMON) apps/app_common.h $(FULL_A) $(HEADERS)
+	@mkdir -p $(APPDIR)
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(APP_COMMON) $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
+
+# one CUnit binary; every tests/test_NAME.c defines st_suite_NAME(), found by this list
+$(BUILD)/suites.inc: $(TEST_SRC) | $(BUILD)/obj
+	@for f in $(TEST_SRC); do n=$${f#tests/test_}; echo "SUITE($${n%.c})"; done > $@.tmp && mv $@.tmp $@
+
+$(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FULL_A) $(HEADERS)
+	$(CC) $(CPPFLAGS_ALL) -I$(BUILD) $(CFLAGS_ALL) -Wno-pedantic -D_POSIX_C_SOURCE=200809L -o $@ tests/main.c $(TEST_SRC) \
+	  $(FULL_A) $(LIBS_TEST) $(LIBS_SIM) $(LIBS_CORE)
+
+run: deps all
+	@if [ -x $(APPDIR)/evolve ]; then \
+	  ./$(APPDIR)/evolve configs/simple_prim.cfg --out runs/simple_prim; \
+	else \
+	  echo "make run: apps/evolve does not exist yet (the primitive stages are still to come)."; \
+	  echo "make run: running the best demo there is instead: docs/example_net.c, the network"; \
+	  echo "make run: and the bitwise GA evolving a toy posture task without the simulator."; \
+	  $(MAKE) --no-print-directory $(BUILD)/example_net && ./$(BUILD)/example_net; \
+	fi
+
+$(BUILD)/example_net: docs/example_net.c $(CORE_A) $(HEADERS)
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(CORE_A) $(LIBS_CORE)
+
+test: deps all test-only
+
+test-only: all $(TEST_BIN)
+	@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
+
+asan:
+	$(MAKE) BUILD=build-asan APPDIR=build-asan/apps OPT="-O1 -g -fno-omit-frame-pointer" \
+	  SAN="-fsanitize=address,undefined -fno-sanitize-recover=all" test-only
+
+valgrind: $(TEST_BIN)
+	valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
+	  ./$(TEST_BIN)
+
+bench: all
+	@if [ -x $(APPDIR)/bench ]; then ./$(APPDIR)/bench; else echo "make bench: apps/bench is not built yet"; fi
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/include/selftalk $(DESTDIR)$(PREFIX)/lib/pkgconfig \
+	  $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/selftalk
+	install -m 644 include/selftalk/*.h $(DESTDIR)$(PREFIX)/include/selftalk/
+	install -m 644 $(CORE_A) $(FULL_A) $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(CORE_SO) $(DESTDIR)$(PREFIX)/lib/libselftalk-core.so.0
+	install -m 755 $(FULL_SO) $(DESTDIR)$(PREFIX)/lib/libselftalk.so.0
+	ln -sf libselftalk-core.so.0 $(DESTDIR)$(PREFIX)/lib/libselftalk-core.so
+	ln -sf libselftalk.so.0 $(DESTDIR)$(PREFIX)/lib/libselftalk.so
+	install -m 755 $(APPS) $(DESTDIR)$(PREFIX)/bin/
+	cp -r data configs $(DESTDIR)$(PREFIX)/share/selftalk/
+	for pc in selftalk selftalk-core; do \
+	  sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/.*ST_VERSION_STRING "\(.*\)"/\1/p' include/selftalk/base.h)|g' \
+	    tools/$$pc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$pc.pc; done
+
+uninstall:
+	rm -rf $(DESTDIR)$(PREFIX)/include/selftalk $(DESTDIR)$(PREFIX)/share/selftalk
+	rm -f $(DESTDIR)$(PREFIX)/lib/libselftalk* $(DESTDIR)$(PREFIX)/lib/pkgconfig/selftalk*.pc
+	cd $(DESTDIR)$(PREFIX)/bin && rm -f $(notdir $(APPS))
+
+clean:
+	rm -rf build build-asan $(APPS)

@@ -1,0 +1,54 @@
+/* SPDX-License-Identifier: MIT */
+#include "app_common.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void app_die(const char *prog, const char *fmt, ...) {
+  va_list ap;
+  fprintf(stderr, "%s: ", prog);
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fputc('\n', stderr);
+  exit(2);
+}
+
+int app_config_arg(appConfigArgs *a, int argc, char **argv, int *i, const char *prog) {
+  const char *arg = argv[*i];
+  if (!strcmp(arg, "--help-config")) {
+    st_config_help(stdout);
+    exit(0);
+  }
+  if (!strcmp(arg, "--config") || !strcmp(arg, "--set")) {
+    if (*i + 1 >= argc) app_die(prog, "%s needs a value", arg);
+    const char *v = argv[++*i];
+    if (arg[2] == 'c') {
+      a->config_path = v;
+    } else {
+      if (a->nsets >= (int)(sizeof a->sets / sizeof a->sets[0])) app_die(prog, "too many --set");
+      a->sets[a->nsets++] = v;
+    }
+    return 1;
+  }
+  if (!strncmp(arg, "--set=", 6) || !strncmp(arg, "--config=", 9)) {
+    if (arg[2] == 'c') {
+      a->config_path = arg + 9;
+    } else {
+      if (a->nsets >= (int)(sizeof a->sets / sizeof a->sets[0])) app_die(prog, "too many --set");
+      a->sets[a->nsets++] = arg + 6;
+    }
+    return 1;
+  }
+  return 0;
+}
+
+void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog) {
+  char err[1024];
+  st_config_default(cfg);
+  if (a->config_path && st_config_load(a->config_path, cfg, err, sizeof err)) app_die(prog, "%s", err);
+  for (int i = 0; i < a->nsets; i++)
+    if (st_config_set(cfg, a->sets[i], err, sizeof err)) app_die(prog, "%s", err);
+}

@@ -1,0 +1,28 @@
+/* SPDX-License-Identifier: MIT
+ * Argument handling shared by the apps: --config FILE, --set section.key=value (repeatable,
+ * applied after the file), --help-config. Errors go to stderr as "PROG: message" and exit 2. */
+#ifndef SELFTALK_APP_COMMON_H
+#define SELFTALK_APP_COMMON_H
+
+#include "selftalk/config.h"
+
+#if defined(__GNUC__)
+__attribute__((noreturn, format(printf, 2, 3)))
+#endif
+void app_die(const char *prog, const char *fmt, ...);
+
+/* Collects config options while an app scans argv. */
+typedef struct appConfigArgs {
+  const char *config_path; /* nullable */
+  const char *sets[256];
+  int nsets;
+} appConfigArgs;
+
+/* If argv[*i] is a config option, consumes it (and its value) and returns 1. Handles
+ * --help-config by printing the key reference and exiting 0. */
+int app_config_arg(appConfigArgs *a, int argc, char **argv, int *i, const char *prog);
+
+/* Defaults, then the config file (if any), then the overrides; dies on any error. */
+void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog);
+
+#endif

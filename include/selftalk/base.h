@@ -1,0 +1,42 @@
+/* SPDX-License-Identifier: MIT
+ * libselftalk: status codes, version and the error-buffer convention shared by every module. */
+#ifndef SELFTALK_BASE_H
+#define SELFTALK_BASE_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define ST_VERSION_MAJOR 0
+#define ST_VERSION_MINOR 1
+#define ST_VERSION_PATCH 0
+#define ST_VERSION_STRING "0.1.0"
+
+/* Result of every call that can fail on input or the environment. Programmer errors
+ * (NULL where a pointer is required) are not reported here. */
+typedef enum stStatus {
+  ST_OK = 0,
+  ST_ERR_IO,       /* a file could not be opened, read, written or renamed */
+  ST_ERR_PARSE,    /* malformed text: config, genome, URDF, number */
+  ST_ERR_RANGE,    /* a well-formed value outside its allowed range */
+  ST_ERR_ARG,      /* inconsistent arguments (sizes, architecture, unknown key) */
+  ST_ERR_NOMEM,    /* allocation failed */
+  ST_ERR_MODEL,    /* a robot model is missing something the library needs */
+  ST_ERR_UNSTABLE, /* the simulation diverged (NaN or runaway values) */
+  ST_STATUS_COUNT
+} stStatus;
+
+/* Short English name of a status, e.g. "parse error". Never NULL. */
+const char *st_status_str(stStatus status);
+
+/* Error buffers: functions that can fail take (char *err, size_t errsz) and, on failure,
+ * write one line without a trailing newline, usually "FILE:LINE: key 'x': problem
+ * (expected ...)". Nullable: err (then no message is written). */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,421 @@
+/* SPDX-License-Identifier: MIT */
+#define _POSIX_C_SOURCE 200809L
+#include "selftalk/config.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "internal.h"
+
+/* ---- the key table, generated from ST_CONFIG_KEYS ---- */
+
+#define K_INT(s, k, d, lo, hi, h) \
+  {#s, #k, ST_CFG_INT, lo, hi, d, NULL, NULL, h, offsetof(stConfig, s##_##k)},
+#define K_REAL(s, k, d, lo, hi, h) \
+  {#s, #k, ST_CFG_REAL, lo, hi, d, NULL, NULL, h, offsetof(stConfig, s##_##k)},
+#define K_BOOL(s, k, d, h) {#s, #k, ST_CFG_BOOL, 0, 1, d, NULL, NULL, h, offsetof(stConfig, s##_##k)},
+#define K_ENUM(s, k, d, ch, h) {#s, #k, ST_CFG_ENUM, 0, 0, d, NULL, ch, h, offsetof(stConfig, s##_##k)},
+#define K_STR(s, k, d, h) {#s, #k, ST_CFG_STR, 0, 0, 0, d, NULL, h, offsetof(stConfig, s##_##k)},
+static const stConfigKey g_keys[] = {ST_CONFIG_KEYS(K_INT, K_REAL, K_BOOL, K_ENUM, K_STR)};
+#define NKEYS ((int)(sizeof g_keys / sizeof g_keys[0]))
+#define MAX_KEYS 512
+/* C99 static assertion: the loader's per-key line table must hold every key */
+typedef char st__keys_fit[NKEYS <= MAX_KEYS ? 1 : -1];
+
+int st_config_nkeys(void) { return NKEYS; }
+const stConfigKey *st_config_key(int i) { return i >= 0 && i < NKEYS ? &g_keys[i] : NULL; }
+
+int st_config_find(const char *section, const char *name) {
+  for (int i = 0; i < NKEYS; i++)
+    if (!strcmp(g_keys[i].section, section) && !strcmp(g_keys[i].name, name)) return i;
+  return -1;
+}
+
+static int section_known(const char *section) {
+  for (int i = 0; i < NKEYS; i++)
+    if (!strcmp(g_keys[i].section, section)) return 1;
+  return 0;
+}
+
+#define FIELD(cfg, k, T) ((T *)((char *)(cfg) + (k)->offset))
+#define CFIELD(cfg, k, T) ((const T *)((const char *)(cfg) + (k)->offset))
+
+/* i-th choice of "a|b|c" into buf; 0 on success */
+static int choice_at(const char *choices, int i, char *buf, size_t n) {
+  const char *p = choices;
+  for (int c = 0; c < i; c++) {
+    p = strchr(p, '|');
+    if (!p) return -1;
+    p++;
+  }
+  size_t len = strcspn(p, "|");
+  if (len >= n) len = n - 1;
+  memcpy(buf, p, len);
+  buf[len] = 0;
+  return 0;
+}
+
+const char *st_config_enum_name(const char *section, const char *name, int value) {
+  static char buf[64]; /* choices are static; one shared buffer is enough for messages */
+  int i = st_config_find(section, name);
+  if (i < 0 || g_keys[i].type != ST_CFG_ENUM || choice_at(g_keys[i].choices, value, buf, sizeof buf))
+    return "?";
+  return buf;
+}
+
+void st_config_default(stConfig *cfg) {
+  memset(cfg, 0, sizeof *cfg);
+  for (int i = 0; i < NKEYS; i++) {
+    const stConfigKey *k = &g_keys[i];
+    switch (k->type) {
+      case ST_CFG_INT:
+      case ST_CFG_BOOL:
+      case ST_CFG_ENUM: *FIELD(cfg, k, int) = (int)k->def_num; break;
+      case ST_CFG_REAL: *FIELD(cfg, k, double) = k->def_num; break;
+      case ST_CFG_STR: st__strlcpy(FIELD(cfg, k, char), k->def_str, ST_CONFIG_STR_MAX); break;
+      default: break;
+    }
+  }
+}
+
+/* what a key accepts, for messages */
+static void expected(const stConfigKey *k, char *buf, size_t n) {
+  switch (k->type) {
+    case ST_CFG_INT: snprintf(buf, n, "an integer in [%.0f, %.0f]", k->min, k->max); break;
+    case ST_CFG_REAL: snprintf(buf, n, "a number in [%g, %g]", k->min, k->max); break;
+    case ST_CFG_BOOL: snprintf(buf, n, "true or false"); break;
+    case ST_CFG_ENUM: snprintf(buf, n, "one of %s", k->choices); break;
+    case ST_CFG_STR: snprintf(buf, n, "a string shorter than %d bytes", ST_CONFIG_STR_MAX); break;
+    default: buf[0] = 0;
+  }
+}
+
+/* parses value into cfg; on failure writes "problem (expected ...)" into msg */
+static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value, char *msg,
+                          size_t n) {
+  char exp[128];
+  expected(k, exp, sizeof exp);
+  switch (k->type) {
+    case ST_CFG_INT: {
+      int v;
+      if (st__parse_int(value, &v)) {
+        snprintf(msg, n, "'%s' is not an integer (expected %s)", value, exp);
+        return ST_ERR_PARSE;
+      }
+      if (v < k->min || v > k->max) {
+        snprintf(msg, n, "%d is out of range (expected %s)", v, exp);
+        return ST_ERR_RANGE;
+      }
+      *FIELD(cfg, k, int) = v;
+      return ST_OK;
+    }
+    case ST_CFG_REAL: {
+      double v;
+      if (st__parse_double(value, &v)) {
+        snprintf(msg, n, "'%s' is not a number (expected %s)", value, exp);
+        return ST_ERR_PARSE;
+      }
+      if (v < k->min || v > k->max) {
+        snprintf(msg, n, "%g is out of range (expected %s)", v, exp);
+        return ST_ERR_RANGE;
+      }
+      *FIELD(cfg, k, double) = v;
+      return ST_OK;
+    }
+    case ST_CFG_BOOL: {
+      static const char *yes[] = {"true", "yes", "on", "1"}, *no[] = {"false", "no", "off", "0"};
+      for (int i = 0; i < 4; i++) {
+        if (!strcasecmp(value, yes[i])) return *FIELD(cfg, k, int) = 1, ST_OK;
+        if (!strcasecmp(value, no[i])) return *FIELD(cfg, k, int) = 0, ST_OK;
+      }
+      snprintf(msg, n, "'%s' is not a boolean (expected %s)", value, exp);
+      return ST_ERR_PARSE;
+    }
+    case ST_CFG_ENUM: {
+      char c[64];
+      for (int i = 0; !choice_at(k->choices, i, c, sizeof c); i++)
+        if (!strcasecmp(value, c)) return *FIELD(cfg, k, int) = i, ST_OK;
+      snprintf(msg, n, "'%s' is not a valid choice (expected %s)", value, exp);
+      return ST_ERR_RANGE;
+    }
+    case ST_CFG_STR:
+      if (strlen(value) >= ST_CONFIG_STR_MAX) {
+        snprintf(msg, n, "value too long (expected %s)", exp);
+        return ST_ERR_RANGE;
+      }
+      st__strlcpy(FIELD(cfg, k, char), value, ST_CONFIG_STR_MAX);
+      return ST_OK;
+    default: return ST_ERR_ARG;
+  }
+}
+
+/* cross-key rules; returns the key index blamed and a message, or -1 */
+static int check_rules(const stConfig *c, char *msg, size_t n) {
+  if (c->ga_elites > c->ga_population) {
+    snprintf(msg, n, "%d exceeds ga.population = %d (expected elites <= population)", c->ga_elites,
+             c->ga_population);
+    return st_config_find("ga", "elites");
+  }
+  if (c->ga_parents > c->ga_population) {
+    snprintf(msg, n, "%d exceeds ga.population = %d (expected parents <= population)",
+             c->ga_parents, c->ga_population);
+    return st_config_find("ga", "parents");
+  }
+  if (c->ga_success_genotypes > c->ga_population) {
+    snprintf(msg, n, "%d exceeds ga.population = %d (expected success_genotypes <= population)",
+             c->ga_success_genotypes, c->ga_population);
+    return st_config_find("ga", "success_genotypes");
+  }
+  return -1;
+}
+
+/* range check of one already-stored value (configs built in code) */
+static int check_range(const stConfig *c, const stConfigKey *k, char *msg, size_t n) {
+  char exp[128];
+  expected(k, exp, sizeof exp);
+  if (k->type == ST_CFG_INT) {
+    int v = *CFIELD(c, k, int);
+    if (v < k->min || v > k->max) return snprintf(msg, n, "%d is out of range (expected %s)", v, exp), -1;
+  } else if (k->type == ST_CFG_REAL) {
+    double v = *CFIELD(c, k, double);
+    if (!(v >= k->min && v <= k->max))
+      return snprintf(msg, n, "%g is out of range (expected %s)", v, exp), -1;
+  } else if (k->type == ST_CFG_ENUM) {
+    char b[64];
+    if (choice_at(k->choices, *CFIELD(c, k, int), b, sizeof b))
+      return snprintf(msg, n, "choice %d does not exist (expected %s)", *CFIELD(c, k, int), exp), -1;
+  }
+  return 0;
+}
+
+stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz) {
+  char msg[512];
+  for (int i = 0; i < NKEYS; i++) {
+    if (check_range(cfg, &g_keys[i], msg, sizeof msg)) {
+      st__errf(err, errsz, "key '%s.%s': %s", g_keys[i].section, g_keys[i].name, msg);
+      return ST_ERR_RANGE;
+    }
+  }
+  int k = check_rules(cfg, msg, sizeof msg);
+  if (k >= 0) {
+    st__errf(err, errsz, "key '%s.%s': %s", g_keys[k].section, g_keys[k].name, msg);
+    return ST_ERR_RANGE;
+  }
+  return ST_OK;
+}
+
+/* ---- INI loading through inih ----
+ * inih's handler gets no line number in Debian's build, so the file is fed through our own
+ * reader, which counts lines, checks section names and strips '#' inline comments. */
+
+typedef struct loader {
+  const char *path;
+  FILE *f;
+  stConfig *cfg;
+  int lineno;
+  int line_of[MAX_KEYS]; /* line where each key was set, 0 = not set */
+  stStatus status;
+  char msg[2048];
+  char *buf;
+  size_t cap;
+} loader;
+
+static void fail(loader *L, stStatus st, const char *fmt, const char *a, const char *b,
+                 const char *c) {
+  if (L->status) return; /* keep the first error */
+  L->status = st;
+  char tail[1200];
+  snprintf(tail, sizeof tail, fmt, a, b, c);
+  snprintf(L->msg, sizeof L->msg, "%s:%d: %s", L->path, L->lineno, tail);
+}
+
+static char *reader(char *str, int num, void *stream) {
+  loader *L = stream;
+  if (L->status) return NULL; /* stop at the first error */
+  ssize_t len = getline(&L->buf, &L->cap, L->f);
+  if (len < 0) return NULL;
+  L->lineno++;
+  char *p = L->buf;
+  /* '#' starts a comment at line start (inih) or after whitespace (here) */
+  for (char *q = p + 1; *q; q++)
+    if (*q == '#' && isspace((unsigned char)q[-1])) {
+      *q = 0;
+      break;
+    }
+  while (isspace((unsigned char)*p)) p++;
+  if (*p == '[') {
+    char name[128];
+    size_t n = strcspn(p + 1, "]");
+    if (p[1 + n] == ']' && n < sizeof name) {
+      memcpy(name, p + 1, n);
+      name[n] = 0;
+      if (!section_known(name)) {
+        char known[256] = "";
+        for (int i = 0; i < NKEYS; i++)
+          if (i == 0 || strcmp(g_keys[i].section, g_keys[i - 1].section)) {
+            if (known[0]) strncat(known, ", ", sizeof known - strlen(known) - 1);
+            strncat(known, g_keys[i].section, sizeof known - strlen(known) - 1);
+          }
+        fail(L, ST_ERR_PARSE, "section [%s]: unknown section (expected one of %s)", name, known, "");
+        return NULL;
+      }
+    }
+  }
+  if (strlen(L->buf) + 1 > (size_t)num) {
+    char lim[32];
+    snprintf(lim, sizeof lim, "%d", num - 2);
+    fail(L, ST_ERR_PARSE, "line longer than %s characters (expected a shorter line)%s%s", lim, "",
+         "");
+    return NULL;
+  }
+  strcpy(str, L->buf);
+  return str;
+}
+
+static int handler(void *user, const char *section, const char *name, const char *value) {
+  loader *L = user;
+  if (!section[0]) {
+    fail(L, ST_ERR_PARSE, "key '%s': outside any section (expected a [section] line first)%s%s",
+         name, "", "");
+    return 0;
+  }
+  char full[160];
+  snprintf(full, sizeof full, "%s.%s", section, name);
+  int i = st_config_find(section, name);
+  if (i < 0) {
+    char known[1024] = "";
+    for (int j = 0; j < NKEYS; j++)
+      if (!strcmp(g_keys[j].section, section)) {
+        if (known[0]) strncat(known, ", ", sizeof known - strlen(known) - 1);
+        strncat(known, g_keys[j].name, sizeof known - strlen(known) - 1);
+      }
+    fail(L, ST_ERR_PARSE, "key '%s': unknown key (expected one of %s)%s", full, known, "");
+    return 0;
+  }
+  if (L->line_of[i]) {
+    char first[32];
+    snprintf(first, sizeof first, "%d", L->line_of[i]);
+    fail(L, ST_ERR_PARSE, "key '%s': duplicate key (first set on line %s)%s", full, first, "");
+    return 0;
+  }
+  char msg[512];
+  stStatus st = set_value(L->cfg, &g_keys[i], value, msg, sizeof msg);
+  if (st) {
+    fail(L, st, "key '%s': %s%s", full, msg, "");
+    return 0;
+  }
+  L->line_of[i] = L->lineno;
+  return 1;
+}
+
+stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz) {
+  loader L;
+  memset(&L, 0, sizeof L);
+  L.path = path;
+  L.cfg = cfg;
+  L.f = fopen(path, "r");
+  if (!L.f) {
+    st__errf(err, errsz, "%s: cannot open config: %s", path, strerror(errno));
+    return ST_ERR_IO;
+  }
+  int r = ini_parse_stream(reader, &L, handler, &L);
+  if (!L.status && ferror(L.f)) {
+    L.status = ST_ERR_IO;
+    snprintf(L.msg, sizeof L.msg, "%s: read error", path);
+  }
+  fclose(L.f);
+  free(L.buf);
+  if (!L.status && r > 0) {
+    L.lineno = r;
+    fail(&L, ST_ERR_PARSE, "syntax error (expected '[section]' or 'key = value')%s%s%s", "", "", "");
+  }
+  if (!L.status) {
+    char msg[512];
+    int k = check_rules(cfg, msg, sizeof msg);
+    if (k >= 0) {
+      L.lineno = L.line_of[k];
+      fail(&L, ST_ERR_RANGE, "key '%s.%s': %s", g_keys[k].section, g_keys[k].name, msg);
+    }
+  }
+  if (L.status) st__errf(err, errsz, "%s", L.msg);
+  return L.status;
+}
+
+stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz) {
+  const char *eq = strchr(assignment, '=');
+  const char *dot = strchr(assignment, '.');
+  if (!eq || !dot || dot > eq) {
+    st__errf(err, errsz, "--set %s: malformed override (expected section.key=value)", assignment);
+    return ST_ERR_PARSE;
+  }
+  char section[64], name[128];
+  size_t ns = (size_t)(dot - assignment), nk = (size_t)(eq - dot - 1);
+  if (ns >= sizeof section || nk >= sizeof name) {
+    st__errf(err, errsz, "--set %s: key too long", assignment);
+    return ST_ERR_PARSE;
+  }
+  memcpy(section, assignment, ns);
+  section[ns] = 0;
+  memcpy(name, dot + 1, nk);
+  name[nk] = 0;
+  int i = st_config_find(section, name);
+  if (i < 0) {
+    st__errf(err, errsz, "--set %s: key '%s.%s': unknown key (see --help-config)", assignment,
+             section, name);
+    return ST_ERR_PARSE;
+  }
+  char msg[512];
+  stStatus st = set_value(cfg, &g_keys[i], eq + 1, msg, sizeof msg);
+  if (!st) {
+    int k = check_rules(cfg, msg, sizeof msg);
+    if (k >= 0) st = ST_ERR_RANGE, i = k;
+  }
+  if (st) st__errf(err, errsz, "--set %s: key '%s.%s': %s", assignment, g_keys[i].section,
+                   g_keys[i].name, msg);
+  return st;
+}
+
+static void format_value(const stConfig *cfg, const stConfigKey *k, char *buf, size_t n) {
+  switch (k->type) {
+    case ST_CFG_INT: snprintf(buf, n, "%d", *CFIELD(cfg, k, int)); break;
+    case ST_CFG_REAL: snprintf(buf, n, "%.17g", *CFIELD(cfg, k, double)); break;
+    case ST_CFG_BOOL: snprintf(buf, n, "%s", *CFIELD(cfg, k, int) ? "true" : "false"); break;
+    case ST_CFG_ENUM:
+      if (choice_at(k->choices, *CFIELD(cfg, k, int), buf, n)) snprintf(buf, n, "?");
+      break;
+    case ST_CFG_STR: snprintf(buf, n, "%s", CFIELD(cfg, k, char)); break;
+    default: buf[0] = 0;
+  }
+}
+
+int st_config_write(FILE *f, const stConfig *cfg) {
+  fprintf(f, "# libselftalk %s resolved configuration\n", ST_VERSION_STRING);
+  for (int i = 0; i < NKEYS; i++) {
+    const stConfigKey *k = &g_keys[i];
+    if (i == 0 || strcmp(k->section, g_keys[i - 1].section)) fprintf(f, "\n[%s]\n", k->section);
+    char v[ST_CONFIG_STR_MAX + 32];
+    format_value(cfg, k, v, sizeof v);
+    fprintf(f, "# %s\n%s = %s\n", k->help, k->name, v);
+  }
+  return ferror(f) ? -1 : 0;
+}
+
+void st_config_help(FILE *f) {
+  static const char *tn[] = {"int", "real", "bool", "enum", "string"};
+  stConfig d;
+  st_config_default(&d);
+  for (int i = 0; i < NKEYS; i++) {
+    const stConfigKey *k = &g_keys[i];
+    char v[ST_CONFIG_STR_MAX + 32], exp[128];
+    format_value(&d, k, v, sizeof v);
+    expected(k, exp, sizeof exp);
+    fprintf(f, "%s.%s (%s, default %s; %s)\n    %s\n", k->section, k->name, tn[k->type], v, exp,
+            k->help);
+  }
+}

@@ -1,0 +1,24 @@
+/* SPDX-License-Identifier: MIT
+ * libselftalk: helpers shared by the library's modules; not installed. */
+#ifndef SELFTALK_INTERNAL_H
+#define SELFTALK_INTERNAL_H
+
+#include <stddef.h>
+
+#if defined(__GNUC__)
+#define ST_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define ST_PRINTF(a, b)
+#endif
+
+/* Writes a formatted message into a caller's error buffer (nullable); returns 0. */
+int st__errf(char *err, size_t errsz, const char *fmt, ...) ST_PRINTF(3, 4);
+
+/* Parses a whole string as a finite double / an int; 0 on success, -1 otherwise. */
+int st__parse_double(const char *s, double *out);
+int st__parse_int(const char *s, int *out);
+
+/* Copies at most n-1 bytes and always terminates; returns strlen(src) as strlcpy does. */
+size_t st__strlcpy(char *dst, const char *src, size_t n);
+
+#endif

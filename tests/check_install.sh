@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs into a temporary prefix and builds docs/example_net.c against the installed copy
+# with pkg-config, once with the whole library and once with the simulator-free core.
+set -euo pipefail
+BUILD=${BUILD:-build}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0 fail=0
+ok() { echo "check_install: $1 ok"; pass=$((pass + 1)); }
+ko() { echo "check_install: $1 FAILED"; fail=$((fail + 1)); }
+
+make --no-print-directory -s install PREFIX="$tmp/prefix" BUILD="$BUILD" >/dev/null
+export PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig"
+for pc in selftalk selftalk-core; do
+  if cc -std=c99 -Wall -Wextra docs/example_net.c $(pkg-config --cflags --libs "$pc") -o "$tmp/ex_$pc" \
+     && LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/ex_$pc" 3 > "$tmp/out_$pc" \
+     && [ "$(grep -c '^generation' "$tmp/out_$pc")" = 3 ]; then
+    ok "pkg-config $pc: example builds against the installed copy and runs"
+  else
+    ko "pkg-config $pc"
+  fi
+done
+# the core must not pull the simulator in
+if LD_LIBRARY_PATH="$tmp/prefix/lib" ldd "$tmp/ex_selftalk-core" | grep -q libode; then
+  ko "selftalk-core links without ODE"
+else
+  ok "selftalk-core links without ODE"
+fi
+# a static link of the core works too
+if cc -std=c99 docs/example_net.c -I"$tmp/prefix/include" "$tmp/prefix/lib/libselftalk-core.a" \
+     $(pkg-config --libs inih) -lm -o "$tmp/ex_static" && "$tmp/ex_static" 2 | grep -q '^generation   1'; then
+  ok "static core link"
+else
+  ko "static core link"
+fi
+echo "check_install: $pass passed, $fail failed"
+[ "$fail" = 0 ]

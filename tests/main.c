@@ -1,0 +1,72 @@
+/* SPDX-License-Identifier: MIT
+ * CUnit runner: registers every suite (build/suites.inc), runs them, optionally only those
+ * whose name contains argv[1], and exits non-zero on any failure. */
+#define _POSIX_C_SOURCE 200809L
+#include <CUnit/Basic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "test_util.h"
+
+#define SUITE(name) void st_suite_##name(void);
+#include "suites.inc"
+#undef SUITE
+
+static char g_tmproot[256];
+
+static void cleanup(void) {
+  if (g_tmproot[0]) {
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_tmproot);
+    if (system(cmd) != 0) fprintf(stderr, "warning: could not remove %s\n", g_tmproot);
+  }
+}
+
+static const char *tmproot(void) {
+  if (!g_tmproot[0]) {
+    snprintf(g_tmproot, sizeof g_tmproot, "/tmp/selftalk_test_XXXXXX");
+    if (!mkdtemp(g_tmproot)) {
+      perror("mkdtemp");
+      exit(1);
+    }
+    atexit(cleanup);
+  }
+  return g_tmproot;
+}
+
+const char *st_test_write_tmp(char *path, size_t n, const char *suffix, const char *text) {
+  static int counter;
+  snprintf(path, n, "%s/f%d%s", tmproot(), counter++, suffix);
+  FILE *f = fopen(path, "w");
+  if (!f) return NULL;
+  fputs(text, f);
+  fclose(f);
+  return path;
+}
+
+const char *st_test_tmpdir(char *path, size_t n) {
+  static int counter;
+  snprintf(path, n, "%s/d%d", tmproot(), counter++);
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "mkdir -p '%s'", path);
+  return system(cmd) == 0 ? path : NULL;
+}
+
+int main(int argc, char **argv) {
+  if (CU_initialize_registry() != CUE_SUCCESS) return 1;
+  const char *filter = argc > 1 ? argv[1] : NULL;
+#define SUITE(name) \
+  if (!filter || strstr(#name, filter)) st_suite_##name();
+#include "suites.inc"
+#undef SUITE
+  CU_basic_set_mode(CU_BRM_VERBOSE);
+  CU_basic_run_tests();
+  unsigned failed = CU_get_number_of_tests_failed() + CU_get_number_of_failures() * 0;
+  unsigned run = CU_get_number_of_tests_run();
+  unsigned asserts_failed = CU_get_number_of_failures();
+  printf("\nunit tests: %u passed, %u failed\n", run - failed, failed);
+  CU_cleanup_registry();
+  return (failed || asserts_failed) ? 1 : 0;
+}

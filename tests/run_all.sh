@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Runs every test of `make test` and prints one closing line for the whole run.
+set -uo pipefail
+BUILD=${BUILD:-build}
+APPDIR=${APPDIR:-apps}
+export BUILD APPDIR NETEVAL="$APPDIR/neteval"
+total_pass=0 total_fail=0 parts_failed=0
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+
+run_part() {
+  echo "== $1"
+  shift
+  "$@" 2>&1 | tee "$log"
+  local rc=${PIPESTATUS[0]}
+  local line
+  line=$(grep -E '[0-9]+ passed, [0-9]+ failed' "$log" | tail -1)
+  local p f
+  p=$(echo "$line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\1/p')
+  f=$(echo "$line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\2/p')
+  total_pass=$((total_pass + ${p:-0}))
+  total_fail=$((total_fail + ${f:-0}))
+  if [ "$rc" != 0 ]; then
+    parts_failed=$((parts_failed + 1))
+    [ "${f:-0}" = 0 ] && total_fail=$((total_fail + 1))
+  fi
+}
+
+run_part "unit tests (CUnit)" "./$BUILD/run_tests"
+run_part "neteval against the independent reference" bash tests/check_neteval.sh
+run_part "apps: argument and input errors" bash tests/check_apps.sh
+if [ "$BUILD" = build ]; then
+  run_part "install + pkg-config" bash tests/check_install.sh
+fi
+echo
+echo "make test: $total_pass passed, $total_fail failed"
+[ "$parts_failed" = 0 ] && [ "$total_fail" = 0 ]

@@ -1,0 +1,161 @@
+/* SPDX-License-Identifier: MIT */
+#include <math.h>
+
+#include "selftalk/config.h"
+#include "test_util.h"
+
+/* the defaults are the thesis protocol (SPEC §4-§5) */
+static void test_config_defaults(void) {
+  stConfig c;
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(c.ga_population, 100);
+  CU_ASSERT_EQUAL(c.ga_elites, 10);
+  CU_ASSERT_EQUAL(c.ga_parents, 20);
+  CU_ASSERT_DOUBLE_EQUAL(c.ga_mutation_rate, 0.005, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.ga_mutation_rate_integrated, 0.04, 0.0);
+  CU_ASSERT_EQUAL(c.ga_success_genotypes, 5);
+  CU_ASSERT_EQUAL(c.ga_max_generations, 1500);
+  CU_ASSERT_EQUAL(c.ga_integrated_generations, 100);
+  CU_ASSERT_DOUBLE_EQUAL(c.network_lambda, 1.5, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.network_gamma_a, 1.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.network_gamma_b, 10.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.network_focus_scale, 20.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.network_focus_threshold, 0.5, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.network_linguistic_input, 10.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.network_secondary_input, 10.0, 0.0);
+  CU_ASSERT_EQUAL(c.network_typeb_init_gene, 32768);
+  CU_ASSERT_EQUAL(c.network_arch, 0);
+  CU_ASSERT_EQUAL(st_config_validate(&c, NULL, 0), ST_OK);
+}
+
+static void test_config_load_ok(void) {
+  char path[256], err[512];
+  st_test_write_tmp(path, sizeof path, ".cfg",
+                    "# an experiment\n"
+                    "[ga]\n"
+                    "population = 50   # inline comment\n"
+                    "mutation_rate = 0.01 ; another\n"
+                    "\n"
+                    "[network]\n"
+                    "arch = b\n"
+                    "[run]\n"
+                    "seed=7\n");
+  stConfig c;
+  st_config_default(&c);
+  CU_ASSERT_EQUAL_FATAL(st_config_load(path, &c, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(c.ga_population, 50);
+  CU_ASSERT_DOUBLE_EQUAL(c.ga_mutation_rate, 0.01, 0.0);
+  CU_ASSERT_EQUAL(c.network_arch, 2);
+  CU_ASSERT_EQUAL(c.run_seed, 7);
+  CU_ASSERT_EQUAL(c.ga_elites, 10); /* untouched keys keep their defaults */
+  CU_ASSERT_STRING_EQUAL(st_config_enum_name("network", "arch", c.network_arch), "B");
+
+  CU_ASSERT_EQUAL(st_config_set(&c, "ga.elites=12", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(c.ga_elites, 12);
+}
+
+/* the resolved config written out loads back to the same values */
+static void test_config_roundtrip(void) {
+  stConfig a, b;
+  st_config_default(&a);
+  a.ga_mutation_rate = 0.1 + 0.2; /* not representable in few digits */
+  a.network_arch = 1;
+  a.run_seed = 123456;
+  char path[256], err[512];
+  st_test_write_tmp(path, sizeof path, ".cfg", "");
+  FILE *f = fopen(path, "w");
+  CU_ASSERT_EQUAL(st_config_write(f, &a), 0);
+  fclose(f);
+  st_config_default(&b);
+  CU_ASSERT_EQUAL_FATAL(st_config_load(path, &b, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(memcmp(&a, &b, sizeof a), 0);
+}
+
+static void expect_error(const char *text, stStatus want, const char *needle) {
+  char path[256], err[1024];
+  st_test_write_tmp(path, sizeof path, ".cfg", text);
+  stConfig c;
+  st_config_default(&c);
+  stStatus st = st_config_load(path, &c, err, sizeof err);
+  CU_ASSERT_EQUAL(st, want);
+  if (st != want) fprintf(stderr, "\n  status %d for: %s\n", st, err);
+  ST_ASSERT_CONTAINS(err, path);
+  ST_ASSERT_CONTAINS(err, needle);
+}
+
+static void test_config_errors(void) {
+  expect_error("[ga]\npopulation = 10\n[robot_arm]\n", ST_ERR_PARSE,
+               ":3: section [robot_arm]: unknown section (expected one of run, network, ga)");
+  expect_error("[ga]\npopsize = 10\n", ST_ERR_PARSE,
+               ":2: key 'ga.popsize': unknown key (expected one of population, elites,");
+  expect_error("[ga]\nmutation_rate = abc\n", ST_ERR_PARSE,
+               ":2: key 'ga.mutation_rate': 'abc' is not a number (expected a number in [0, 1])");
+  expect_error("[ga]\n\nmutation_rate = 1.5\n", ST_ERR_RANGE,
+               ":3: key 'ga.mutation_rate': 1.5 is out of range (expected a number in [0, 1])");
+  expect_error("[ga]\npopulation = 10.5\n", ST_ERR_PARSE,
+               ":2: key 'ga.population': '10.5' is not an integer (expected an integer in [2, 100000])");
+  expect_error("[ga]\npopulation = 1e400\n", ST_ERR_PARSE, "'1e400' is not an integer");
+  expect_error("[network]\nlambda = 1e400\n", ST_ERR_PARSE, "'1e400' is not a number");
+  expect_error("[network]\narch = C\n", ST_ERR_RANGE,
+               ":2: key 'network.arch': 'C' is not a valid choice (expected one of base|A|B)");
+  expect_error("[ga]\nelites = 3\nelites = 4\n", ST_ERR_PARSE,
+               ":3: key 'ga.elites': duplicate key (first set on line 2)");
+  expect_error("[ga]\nelites = 3\nthis line has no equals sign\n", ST_ERR_PARSE,
+               ":3: syntax error (expected '[section]' or 'key = value')");
+  expect_error("seed = 3\n[run]\n", ST_ERR_PARSE,
+               ":1: key 'seed': outside any section (expected a [section] line first)");
+  expect_error("[ga]\nelites = 30\n\npopulation = 20\n", ST_ERR_RANGE,
+               ":2: key 'ga.elites': 30 exceeds ga.population = 20 (expected elites <= population)");
+  expect_error("[ga]\nelites = \n", ST_ERR_PARSE, ":2: key 'ga.elites': '' is not an integer");
+
+  stConfig c;
+  char err[512];
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(st_config_load("/nonexistent/run.cfg", &c, err, sizeof err), ST_ERR_IO);
+  ST_ASSERT_CONTAINS(err, "/nonexistent/run.cfg: cannot open config: No such file");
+}
+
+static void test_config_set_errors(void) {
+  stConfig c;
+  char err[512];
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(st_config_set(&c, "ga.nope=3", err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, "--set ga.nope=3: key 'ga.nope': unknown key");
+  CU_ASSERT_EQUAL(st_config_set(&c, "population=3", err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, "malformed override (expected section.key=value)");
+  CU_ASSERT_EQUAL(st_config_set(&c, "ga.population", err, sizeof err), ST_ERR_PARSE);
+  CU_ASSERT_EQUAL(st_config_set(&c, "ga.mutation_rate=-1", err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "key 'ga.mutation_rate': -1 is out of range");
+  CU_ASSERT_EQUAL(st_config_set(&c, "ga.population=5", err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "key 'ga.elites': 10 exceeds ga.population = 5");
+  /* a config built in code is checked by validate */
+  st_config_default(&c);
+  c.network_lambda = -3;
+  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "key 'network.lambda': -3 is out of range");
+}
+
+static void test_config_table(void) {
+  /* every key is findable, documented and has a default inside its own range */
+  stConfig c;
+  st_config_default(&c);
+  for (int i = 0; i < st_config_nkeys(); i++) {
+    const stConfigKey *k = st_config_key(i);
+    CU_ASSERT_EQUAL(st_config_find(k->section, k->name), i);
+    CU_ASSERT(k->help && strlen(k->help) > 10);
+    if (k->type == ST_CFG_INT || k->type == ST_CFG_REAL)
+      CU_ASSERT(k->def_num >= k->min && k->def_num <= k->max);
+  }
+  CU_ASSERT_EQUAL(st_config_find("ga", "nope"), -1);
+  CU_ASSERT_PTR_NULL(st_config_key(-1));
+}
+
+void st_suite_config(void) {
+  ST_ADD_SUITE("config");
+  ST_ADD_TEST(test_config_defaults);
+  ST_ADD_TEST(test_config_load_ok);
+  ST_ADD_TEST(test_config_roundtrip);
+  ST_ADD_TEST(test_config_errors);
+  ST_ADD_TEST(test_config_set_errors);
+  ST_ADD_TEST(test_config_table);
+}
