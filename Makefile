@@ -143,7 +143,7 @@ install: all
 	ln -sf libselftalk-core.so.0 $(DESTDIR)$(PREFIX)/lib/libselftalk-core.so
 	ln -sf libselftalk.so.0 $(DESTDIR)$(PREFIX)/lib/libselftalk.so
 	install -m 755 $(APPS) $(DESTDIR)$(PREFIX)/bin/
-	cp -r data configs $(DESTDIR)$(PREFIX)/share/selftalk/
+	for d in data configs; do if [ -d $$d ]; then cp -r $$d $(DESTDIR)$(PREFIX)/share/selftalk/; fi; done
 	for pc in selftalk selftalk-core; do \
 	  sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/.*ST_VERSION_STRING "\(.*\)"/\1/p' include/selftalk/base.h)|g' \
 	    tools/$$pc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$pc.pc; done
