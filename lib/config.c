@@ -172,6 +172,26 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
              c->ga_success_genotypes, c->ga_population);
     return st_config_find("ga", "success_genotypes");
   }
+  if (c->robot_torso_min_deg >= c->robot_torso_max_deg) {
+    snprintf(msg, n, "%g is not below robot.torso_max_deg = %g (expected min < max)",
+             c->robot_torso_min_deg, c->robot_torso_max_deg);
+    return st_config_find("robot", "torso_min_deg");
+  }
+  if (c->scene_table_x_min >= c->scene_table_x_max) {
+    snprintf(msg, n, "%g is not below scene.table_x_max = %g (expected min < max)",
+             c->scene_table_x_min, c->scene_table_x_max);
+    return st_config_find("scene", "table_x_min");
+  }
+  if (c->scene_table_y_min >= c->scene_table_y_max) {
+    snprintf(msg, n, "%g is not below scene.table_y_max = %g (expected min < max)",
+             c->scene_table_y_min, c->scene_table_y_max);
+    return st_config_find("scene", "table_y_min");
+  }
+  if (c->scene_object_base_height > 2 * c->scene_object_radius) {
+    snprintf(msg, n, "%g exceeds the object diameter %g (expected base inside the sphere's height)",
+             c->scene_object_base_height, 2 * c->scene_object_radius);
+    return st_config_find("scene", "object_base_height");
+  }
   return -1;
 }
 

@@ -11,6 +11,9 @@
 #define ST_PRINTF(a, b)
 #endif
 
+#define ST_PI 3.14159265358979323846
+#define ST_DEG (ST_PI / 180.0)
+
 /* Writes a formatted message into a caller's error buffer (nullable); returns 0. */
 int st__errf(char *err, size_t errsz, const char *fmt, ...) ST_PRINTF(3, 4);
 

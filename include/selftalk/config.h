@@ -43,7 +43,44 @@ extern "C" {
   REAL(ga, mutation_rate_integrated, 0.04, 0.0, 1.0, "bit-flip probability per mutable (new) bit, integrated stage") \
   INT(ga, success_genotypes, 5, 1, 100000, "primitive stages end when this many genotypes succeed in every trial") \
   INT(ga, max_generations, 1500, 1, 10000000, "primitive stages (both together) stop after this many generations") \
-  INT(ga, integrated_generations, 100, 1, 10000000, "generations of the integrated stage")
+  INT(ga, integrated_generations, 100, 1, 10000000, "generations of the integrated stage")      \
+  STR(robot, urdf, "data/icub_left_arm.urdf", "robot model (URDF); relative paths are from the working directory") \
+  STR(robot, dof_joints, "torso_yaw,torso_pitch,l_shoulder_pitch,l_shoulder_roll,l_shoulder_yaw,l_elbow,l_wrist_prosup,l_wrist_pitch,l_wrist_yaw,l_thumb_oppose,l_thumb_proximal,l_index_proximal", "the 12 actuated DOF in SPEC order: the master joint of each (coupled joints mimic it)") \
+  STR(robot, touch_links, "l_thumb_3,l_index_3,l_middle_3,l_ring_3,l_little_3,l_hand", "links of the 6 touch sensors: thumb, index, middle, ring, little fingertip, palm") \
+  STR(robot, tip_frames, "l_thumb_tip,l_index_tip,l_middle_tip,l_ring_tip,l_little_tip", "fingertip points: thumb, index, middle, ring, little") \
+  STR(robot, palm_frame, "l_palm_center", "frame at the centre of the palm's inner surface, +z = outward palm normal") \
+  STR(robot, arm_first_link, "l_shoulder_1", "first link of the arm: it and its descendants are the arm and hand (table penalty, touch)") \
+  REAL(robot, torso_min_deg, -10.0, -90.0, 90.0, "lower limit of torso yaw and pitch (thesis 2.2), degrees") \
+  REAL(robot, torso_max_deg, 40.0, -90.0, 90.0, "upper limit of torso yaw and pitch (thesis 2.2), degrees") \
+  REAL(robot, alpha_kinematic, 37.0, 0.0, 10000.0, "joint velocity = alpha (y - qhat) degrees/s, kinematic mode (thesis 2.3.1)") \
+  REAL(robot, alpha_dynamic, 100.0, 0.0, 10000.0, "joint velocity = alpha (y - qhat) degrees/s, dynamic mode (thesis 2.3.1)") \
+  REAL(robot, max_velocity_deg, 40.0, 0.0, 1000.0, "joint speed limit, degrees/s (thesis 2.3.1)") \
+  REAL(robot, control_dt, 0.05, 0.001, 1.0, "control step, seconds (thesis 2.1: 20 steps = 1 s)") \
+  REAL(scene, table_top_z, -0.08, -1.0, 1.0, "height of the table top in the world frame (waist = 0), m") \
+  REAL(scene, table_x_min, 0.10, -2.0, 2.0, "table near edge, m (50 cm deep)") \
+  REAL(scene, table_x_max, 0.60, -2.0, 2.0, "table far edge, m") \
+  REAL(scene, table_y_min, -0.30, -2.0, 2.0, "table right edge, m (80 cm wide)") \
+  REAL(scene, table_y_max, 0.50, -2.0, 2.0, "table left edge, m") \
+  REAL(scene, table_thickness, 0.03, 0.001, 1.0, "table top thickness, m") \
+  REAL(scene, object_radius, 0.035, 0.001, 0.5, "object sphere radius, m (7 cm diameter, thesis 2.5.1)") \
+  REAL(scene, object_mass, 0.2, 0.001, 10.0, "object mass, kg") \
+  REAL(scene, object_base_radius, 0.0175, 0.0, 0.5, "flattened base: cylinder radius, m (3.5 cm diameter)") \
+  REAL(scene, object_base_height, 0.015, 0.0, 0.5, "flattened base: cylinder height, m; its bottom is flush with the sphere's lowest point") \
+  REAL(scene, object_center_x, 0.30, -2.0, 2.0, "centre of the four object positions, x, m (30 cm in front)") \
+  REAL(scene, object_center_y, 0.10, -2.0, 2.0, "centre of the four object positions, y, m (10 cm to the left)") \
+  REAL(scene, object_spacing, 0.10, 0.0, 1.0, "object positions lie this far front/back/left/right of the centre, m") \
+  REAL(scene, object_offset, 0.02, 0.0, 0.5, "uniform offset on x and y of the object in trials that start with reach, m") \
+  REAL(scene, target_x, 0.25, -2.0, 2.0, "targets: x, m (25 cm in front)") \
+  REAL(scene, target_y, 0.10, -2.0, 2.0, "targets: T0 at +y, T1 at -y, m") \
+  REAL(scene, target_z, 0.17, -2.0, 2.0, "targets: z, m (25 cm above the table)") \
+  REAL(scene, target_offset, 0.02, 0.0, 0.5, "uniform offset on x, y and z of the target every trial, m") \
+  REAL(scene, target_radius, 0.06, 0.0, 1.0, "the target is reached when the object centre is this close, m") \
+  REAL(fitness, reach_height, 0.095, 0.0, 1.0, "d_r is measured to the point this far above the object centre, m (6 cm above the sphere)") \
+  REAL(fitness, penalty_table, 1.0, 0.0, 100.0, "penalty per step with any arm or hand part on the table") \
+  REAL(fitness, penalty_object, 1.0, 0.0, 100.0, "penalty per step with any robot part on the object") \
+  REAL(fitness, move_free, 0.02, 0.0, 1.0, "object displacement below this is not penalised, m") \
+  REAL(fitness, move_scale, 0.1, 0.0001, 10.0, "object-moving penalty = displacement / this (in decimetres), m") \
+  REAL(fitness, move_max, 2.0, 0.0, 100.0, "object-moving penalty cap per step")
 
 /* The configuration: one field per key, named section_key. */
 #define ST__CFG_INT(s, k, d, lo, hi, h) int s##_##k;

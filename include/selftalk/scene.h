@@ -1,0 +1,42 @@
+/* SPDX-License-Identifier: MIT
+ * libselftalk: the scene of thesis §2.5 / SPEC §2 - table, object (sphere with a flattened
+ * base), the four object positions and the targets, with their random offsets. A plain value
+ * built from the [scene] keys; read-only afterwards. */
+#ifndef SELFTALK_SCENE_H
+#define SELFTALK_SCENE_H
+
+#include "selftalk/config.h"
+#include "selftalk/rng.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define ST_NOBJPOS 4 /* P0 front, P1 back, P2 left, P3 right of the centre */
+#define ST_TARGET_GENERAL 2 /* target index of the generalisation test, between T0 and T1 */
+
+typedef struct stScene {
+  double table_lo[3], table_hi[3]; /* table-top box, world frame */
+  double table_top_z;
+  double obj_radius, obj_mass, base_radius, base_height;
+  double obj_rest_z;               /* sphere centre resting on the table */
+  double obj_pos[ST_NOBJPOS][3];   /* resting object positions (sphere centres) */
+  double target[3][3];             /* T0, T1, generalisation target */
+  double obj_offset, target_offset, target_radius;
+} stScene;
+
+void st_scene_from_config(const stConfig *cfg, stScene *scene);
+
+/* Object position k (0..3); with_offset adds the uniform x/y offset of reach trials. Nullable:
+ * rng when with_offset is 0. */
+void st_scene_object(const stScene *s, int k, int with_offset, stRng *rng, double pos[3]);
+
+/* Target k (0, 1 or ST_TARGET_GENERAL) with its uniform x/y/z offset drawn from rng (nullable:
+ * no offset). */
+void st_scene_target(const stScene *s, int k, stRng *rng, double pos[3]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
