@@ -13,7 +13,7 @@ CC ?= cc
 CXX ?= c++
 BUILD ?= build
 APPDIR ?= apps
-OPT ?= -O2 -g
+OPT ?= -O3 -g
 SAN ?=
 WERROR ?=
 
@@ -131,7 +131,7 @@ valgrind: $(TEST_BIN)
 	  ./$(TEST_BIN)
 
 bench: all
-	@if [ -x $(APPDIR)/bench ]; then ./$(APPDIR)/bench; else echo "make bench: apps/bench is not built yet"; fi
+	./$(APPDIR)/bench --mode kinematic
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/selftalk $(DESTDIR)$(PREFIX)/lib/pkgconfig \

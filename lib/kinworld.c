@@ -149,24 +149,71 @@ static double box_dist2(const double *c, const double *lo, const double *hi) {
   return d2;
 }
 
-static void place_geom(const stWorld *w, int gi, const double c[3]) {
+/* world rotation of a geom: body rotation times the geom's local rotation */
+static void geom_rot(const stWorld *w, int gi, double *Rg) {
   const stModel *m = w->robot->model;
-  kinInternal *k = w->internal_;
-  const int b = k->geom[gi].body;
-  double Rg[9];
-  const double *Rb = w->R[b], *Rl = m->geom_rot[gi];
+  const double *Rb = w->R[m->geom_body[gi]], *Rl = m->geom_rot[gi];
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++)
       Rg[3 * i + j] = Rb[3 * i] * Rl[j] + Rb[3 * i + 1] * Rl[3 + j] + Rb[3 * i + 2] * Rl[6 + j];
+}
+
+static void place_geom(const stWorld *w, int gi, const double c[3], const double *Rg) {
+  kinInternal *k = w->internal_;
   dMatrix3 R = {Rg[0], Rg[1], Rg[2], 0, Rg[3], Rg[4], Rg[5], 0, Rg[6], Rg[7], Rg[8], 0};
   dGeomSetPosition(k->geom[gi].g, c[0], c[1], c[2]);
   dGeomSetRotation(k->geom[gi].g, R);
+}
+
+/* exact half extents of a primitive's world AABB about its centre; 0 for meshes (unknown) */
+static int geom_half_aabb(const stModel *m, int gi, const double *Rg, double half[3]) {
+  const double *s = m->geom_size[gi];
+  switch (m->geom_type[gi]) {
+    case ST_GEOM_SPHERE:
+      half[0] = half[1] = half[2] = s[0];
+      return 1;
+    case ST_GEOM_BOX:
+      for (int i = 0; i < 3; i++)
+        half[i] = 0.5 * (fabs(Rg[3 * i]) * s[0] + fabs(Rg[3 * i + 1]) * s[1] + fabs(Rg[3 * i + 2]) * s[2]);
+      return 1;
+    case ST_GEOM_CYLINDER:
+      for (int i = 0; i < 3; i++) {
+        double u = Rg[3 * i + 2]; /* axis component */
+        double rad = 1.0 - u * u;
+        half[i] = 0.5 * s[1] * fabs(u) + s[0] * sqrt(rad > 0 ? rad : 0);
+      }
+      return 1;
+    default: return 0;
+  }
+}
+
+/* contact of a convex geom with the (axis-aligned) table box, deciding exactly from the geom's
+ * AABB where possible: disjoint AABBs cannot touch, and a convex body whose AABB lies within
+ * the table's x/y extent and overlaps its z range must cross the table (its lowest and highest
+ * points bracket part of the slab). Only geoms straddling an edge need the narrow phase. */
+static int table_contact(const stWorld *w, int gi, const double c[3], const double *Rg) {
+  const stScene *s = w->scene;
+  kinInternal *k = w->internal_;
+  double half[3];
+  if (geom_half_aabb(w->robot->model, gi, Rg, half)) {
+    int inside_xy = 1;
+    for (int i = 0; i < 3; i++) {
+      if (c[i] + half[i] < s->table_lo[i] || c[i] - half[i] > s->table_hi[i]) return 0;
+      if (i < 2 && (c[i] - half[i] < s->table_lo[i] || c[i] + half[i] > s->table_hi[i])) inside_xy = 0;
+    }
+    if (inside_xy) return 1;
+  }
+  place_geom(w, gi, c, Rg);
+  dContactGeom cg;
+  return dCollide(k->geom[gi].g, k->table, 1, &cg, sizeof cg) > 0;
 }
 
 static int touches(dGeomID a, dGeomID b) {
   dContactGeom cg;
   return b && dCollide(a, b, 1, &cg, sizeof cg) > 0;
 }
+
+static void contacts_reference(stWorld *w, stContacts *c);
 
 static void update_contacts(stWorld *w) {
   const stRobot *r = w->robot;
@@ -181,6 +228,10 @@ static void update_contacts(stWorld *w) {
     dGeomSetPosition(k->base, w->obj[0], w->obj[1],
                      w->obj[2] - s->obj_radius + 0.5 * s->base_height);
   }
+  if (w->reference_contacts) {
+    contacts_reference(w, c);
+    return;
+  }
   for (int gi = 0; gi < k->ngeom; gi++) {
     const int b = k->geom[gi].body;
     const double rad = k->geom[gi].radius;
@@ -192,15 +243,19 @@ static void update_contacts(stWorld *w) {
     double ro = rad + k->obj_bound;
     int near_obj = dx * dx + dy * dy + dz * dz <= ro * ro;
     if (!near_table && !near_obj) continue;
-    place_geom(w, gi, ctr);
+    double Rg[9];
+    geom_rot(w, gi, Rg);
     const int t = r->body_touch[b];
-    if (near_table && r->body_is_arm[b] && touches(k->geom[gi].g, k->table)) {
+    if (near_table && r->body_is_arm[b] && table_contact(w, gi, ctr, Rg)) {
       c->arm_table = 1;
       if (t >= 0) c->touch[t] = 1;
     }
-    if (near_obj && (touches(k->geom[gi].g, k->ball) || touches(k->geom[gi].g, k->base))) {
-      c->robot_object = 1;
-      if (t >= 0) c->touch[t] = c->touch_object[t] = 1;
+    if (near_obj) {
+      place_geom(w, gi, ctr, Rg);
+      if (touches(k->geom[gi].g, k->ball) || touches(k->geom[gi].g, k->base)) {
+        c->robot_object = 1;
+        if (t >= 0) c->touch[t] = c->touch_object[t] = 1;
+      }
     }
   }
   /* the object touches the table when it rests on or sinks into it */
@@ -230,4 +285,27 @@ void st_world_step_kinematic(stWorld *w, const double *y) {
   }
   w->step++;
   st_world_update(w);
+}
+
+static void contacts_reference(stWorld *w, stContacts *c) {
+  const stRobot *r = w->robot;
+  const stModel *m = r->model;
+  kinInternal *k = w->internal_;
+  memset(c, 0, sizeof *c);
+  for (int gi = 0; gi < k->ngeom; gi++) {
+    const int b = k->geom[gi].body, t = r->body_touch[b];
+    double ctr[3], Rg[9];
+    st_world_point(w, b, m->geom_pos[gi], ctr);
+    geom_rot(w, gi, Rg);
+    place_geom(w, gi, ctr, Rg);
+    if (r->body_is_arm[b] && touches(k->geom[gi].g, k->table)) {
+      c->arm_table = 1;
+      if (t >= 0) c->touch[t] = 1;
+    }
+    if (touches(k->geom[gi].g, k->ball) || touches(k->geom[gi].g, k->base)) {
+      c->robot_object = 1;
+      if (t >= 0) c->touch[t] = c->touch_object[t] = 1;
+    }
+  }
+  c->object_table = touches(k->ball, k->table) || touches(k->base, k->table);
 }

@@ -203,13 +203,6 @@ void st_robot_angles(const stRobot *r, const double *qhat, double *angle) {
   }
 }
 
-/* out = a b for row-major 3x3 */
-static void mat_mul(const double *a, const double *b, double *out) {
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++)
-      out[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
-}
-
 /* rotation by angle q about unit axis a (Rodrigues) */
 static void axis_rot(const double *a, double q, double *R) {
   double c = cos(q), s = sin(q), t = 1.0 - c;
@@ -224,34 +217,56 @@ static void axis_rot(const double *a, double q, double *R) {
   R[8] = t * a[2] * a[2] + c;
 }
 
-void st_robot_fk_angles(const stRobot *r, const double *angle, double (*R)[9], double (*p)[3]) {
+/* the hot loop of every kinematic step: written out so the compiler keeps it in registers */
+void st_robot_fk_angles(const stRobot *r, const double *restrict angle, double (*restrict R)[9],
+                        double (*restrict p)[3]) {
   const stModel *m = r->model;
   static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   memcpy(R[0], I, sizeof I);
   p[0][0] = p[0][1] = p[0][2] = 0.0;
+  double last_q = 0.0, c = 1.0, s = 0.0; /* coupled joints repeat an angle: reuse its sincos */
   for (int b = 1; b < m->nbody; b++) {
     const int pb = m->body_parent[b];
-    const double *Rp = R[pb], *o = m->jnt_pos[b];
-    /* origin: p = p_parent + R_parent o;  R = R_parent R_origin R_axis(q) */
-    for (int i = 0; i < 3; i++)
-      p[b][i] = p[pb][i] + Rp[3 * i] * o[0] + Rp[3 * i + 1] * o[1] + Rp[3 * i + 2] * o[2];
-    double Ro[9];
-    mat_mul(Rp, m->jnt_rot[b], Ro);
+    const double *restrict Rp = R[pb];
+    const double *restrict o = m->jnt_pos[b];
+    const double *restrict Ro = m->jnt_rot[b];
+    const double r0 = Rp[0], r1 = Rp[1], r2 = Rp[2], r3 = Rp[3], r4 = Rp[4], r5 = Rp[5],
+                 r6 = Rp[6], r7 = Rp[7], r8 = Rp[8];
+    p[b][0] = p[pb][0] + r0 * o[0] + r1 * o[1] + r2 * o[2];
+    p[b][1] = p[pb][1] + r3 * o[0] + r4 * o[1] + r5 * o[2];
+    p[b][2] = p[pb][2] + r6 * o[0] + r7 * o[1] + r8 * o[2];
+    double M[9];
     if (m->jnt_type[b] != ST_JOINT_REVOLUTE) {
-      memcpy(R[b], Ro, sizeof Ro);
+      memcpy(M, Ro, sizeof M);
     } else if (r->revolute_z) {
-      /* R_z(q): column 0 = c x + s y, column 1 = -s x + c y */
-      double c = cos(angle[b]), s = sin(angle[b]);
+      if (angle[b] != last_q) {
+        last_q = angle[b];
+        c = cos(last_q);
+        s = sin(last_q);
+      }
+      /* Ro Rz(q): column 0 = c x + s y, column 1 = -s x + c y, column 2 = z */
       for (int i = 0; i < 3; i++) {
-        R[b][3 * i] = c * Ro[3 * i] + s * Ro[3 * i + 1];
-        R[b][3 * i + 1] = -s * Ro[3 * i] + c * Ro[3 * i + 1];
-        R[b][3 * i + 2] = Ro[3 * i + 2];
+        M[3 * i] = c * Ro[3 * i] + s * Ro[3 * i + 1];
+        M[3 * i + 1] = c * Ro[3 * i + 1] - s * Ro[3 * i];
+        M[3 * i + 2] = Ro[3 * i + 2];
       }
     } else {
       double Ra[9];
       axis_rot(m->jnt_axis[b], angle[b], Ra);
-      mat_mul(Ro, Ra, R[b]);
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+          M[3 * i + j] = Ro[3 * i] * Ra[j] + Ro[3 * i + 1] * Ra[3 + j] + Ro[3 * i + 2] * Ra[6 + j];
     }
+    double *restrict Rb = R[b];
+    Rb[0] = r0 * M[0] + r1 * M[3] + r2 * M[6];
+    Rb[1] = r0 * M[1] + r1 * M[4] + r2 * M[7];
+    Rb[2] = r0 * M[2] + r1 * M[5] + r2 * M[8];
+    Rb[3] = r3 * M[0] + r4 * M[3] + r5 * M[6];
+    Rb[4] = r3 * M[1] + r4 * M[4] + r5 * M[7];
+    Rb[5] = r3 * M[2] + r4 * M[5] + r5 * M[8];
+    Rb[6] = r6 * M[0] + r7 * M[3] + r8 * M[6];
+    Rb[7] = r6 * M[1] + r7 * M[4] + r8 * M[7];
+    Rb[8] = r6 * M[2] + r7 * M[5] + r8 * M[8];
   }
 }
 

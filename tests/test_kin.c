@@ -311,6 +311,43 @@ static void test_robot_config_errors(void) {
   CU_ASSERT_PTR_NULL(r);
 }
 
+/* the culled, shortcut contact detection agrees with brute-force narrow phase on random
+ * postures, with the table raised so that about half of them hit it */
+static void test_contacts_match_reference(void) {
+  stRobot *r = robot();
+  CU_ASSERT_PTR_NOT_NULL_FATAL(r);
+  char err[256];
+  stConfig c = g_cfg;
+  c.scene_table_top_z = 0.0;
+  stScene high;
+  st_scene_from_config(&c, &high);
+  stWorld *w = NULL;
+  CU_ASSERT_EQUAL_FATAL(st_world_create(r, &high, &w, err, sizeof err), ST_OK);
+  stRng rng = st_rng_keyed(5, ST_RNG_USER, 0, 0, 0);
+  int table_hits = 0, object_hits = 0, mismatches = 0;
+  for (int i = 0; i < 3000; i++) {
+    double q[ST_NDOF], obj[3];
+    for (int d = 0; d < ST_NDOF; d++) q[d] = st_rng_uniform(&rng);
+    st_world_reset(w, q, high.obj_pos[0], high.target[0]);
+    /* put the object near the palm half of the time */
+    memcpy(obj, w->p[r->palm_body], sizeof obj);
+    for (int k = 0; k < 3; k++) obj[k] += st_rng_range(&rng, -0.06, 0.06);
+    if (i % 2) st_world_reset(w, q, obj, high.target[0]);
+    stContacts fast = w->contacts, ref;
+    w->reference_contacts = 1;
+    st_world_update(w);
+    ref = w->contacts;
+    w->reference_contacts = 0;
+    mismatches += memcmp(&ref, &fast, sizeof ref) != 0;
+    table_hits += ref.arm_table;
+    object_hits += ref.robot_object;
+  }
+  CU_ASSERT_EQUAL(mismatches, 0);
+  CU_ASSERT(table_hits > 300 && table_hits < 2700); /* both outcomes exercised */
+  CU_ASSERT(object_hits > 100);
+  st_world_destroy(w);
+}
+
 void st_suite_kin(void) {
   CU_pSuite st__suite = CU_add_suite("kin", NULL, cleanup);
   ST_ADD_TEST(test_ee_matches_ikin);
@@ -321,4 +358,5 @@ void st_suite_kin(void) {
   ST_ADD_TEST(test_moving_penalty);
   ST_ADD_TEST(test_scene_positions);
   ST_ADD_TEST(test_robot_config_errors);
+  ST_ADD_TEST(test_contacts_match_reference);
 }

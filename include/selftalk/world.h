@@ -38,6 +38,8 @@ typedef struct stWorld {
   double target[3];       /* target of this trial */
   stContacts contacts;
   long step;              /* control steps since reset */
+  int reference_contacts; /* 1: test every geometry with ODE's narrow phase, no culling or
+                             shortcuts (slow; for validation and as a benchmark baseline) */
   void *internal_;        /* collision geometry */
 } stWorld;
 
