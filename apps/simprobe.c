@@ -4,6 +4,7 @@
  *
  *   simprobe --deg TY,TP,SP,SR,SY,EL,WPS,WP,WY [--hand O,T,F] [--object X,Y,Z]
  *            [--config FILE] [--set section.key=value]
+ *   simprobe --postures     one line per initial posture: "posture K PRIMITIVE ok|FAIL reason"
  *
  * Angles in degrees, iCub joint conventions (torso yaw, torso pitch, shoulder pitch, roll,
  * yaw, elbow, wrist pronosupination, pitch, yaw); hand DOF normalised 0..1 (thumb opposition,
@@ -14,6 +15,7 @@
 #include <string.h>
 
 #include "app_common.h"
+#include "selftalk/postures.h"
 #include "selftalk/sensors.h"
 
 static const char *prog = "simprobe";
@@ -34,27 +36,30 @@ static int parse_list(const char *s, double *v, int n) {
 
 static void usage(FILE *f) {
   fprintf(f, "usage: simprobe --deg TY,TP,SP,SR,SY,EL,WPS,WP,WY [--hand O,T,F] [--object X,Y,Z]\n"
-             "                [--config FILE] [--set section.key=value]...\n");
+             "                [--config FILE] [--set section.key=value]...\n"
+             "       simprobe --postures [--config FILE] [--set section.key=value]...\n");
 }
 
 int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *deg = NULL, *hand = NULL, *object = NULL;
+  int postures = 0;
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     if (!strcmp(argv[i], "--deg") && i + 1 < argc) deg = argv[++i];
     else if (!strcmp(argv[i], "--hand") && i + 1 < argc) hand = argv[++i];
     else if (!strcmp(argv[i], "--object") && i + 1 < argc) object = argv[++i];
+    else if (!strcmp(argv[i], "--postures")) postures = 1;
     else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return usage(stdout), 0;
     else {
       usage(stderr);
       app_die(prog, "unknown or incomplete option '%s'", argv[i]);
     }
   }
-  if (!deg) {
+  if (!deg && !postures) {
     usage(stderr);
-    app_die(prog, "--deg is required");
+    app_die(prog, "--deg or --postures is required");
   }
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
@@ -64,6 +69,22 @@ int main(int argc, char **argv) {
   stScene scene;
   st_scene_from_config(&cfg, &scene);
 
+  if (postures) {
+    /* K = 4 primitive + k: reach 0-3, open 4-7, grasp 8-11, move 12-15 */
+    int failed = 0;
+    for (int prim = 0; prim < ST_NPRIM; prim++)
+      for (int k = 0; k < ST_NPOSTURE; k++) {
+        double q[ST_NDOF];
+        char why[512];
+        stStatus st = st_posture(robot, &scene, prim, k, q, why, sizeof why);
+        if (!st && !st_posture_check(robot, &scene, prim, k, q, why, sizeof why)) st = ST_ERR_RANGE;
+        if (st) failed++;
+        printf("posture %d %s %s%s%s\n", 4 * prim + k, st_primitive_name(prim), st ? "FAIL " : "ok",
+               st ? why : "", "");
+      }
+    st_robot_destroy(robot);
+    return failed ? 1 : 0;
+  }
   double a[9], h[3] = {0, 0, 0}, obj[3];
   if (parse_list(deg, a, 9)) app_die(prog, "--deg '%s': expected 9 comma-separated numbers (degrees)", deg);
   if (hand && parse_list(hand, h, 3)) app_die(prog, "--hand '%s': expected 3 comma-separated numbers in [0, 1]", hand);

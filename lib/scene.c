@@ -32,6 +32,24 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
   s->obj_offset = c->scene_object_offset;
   s->target_offset = c->scene_target_offset;
   s->target_radius = c->scene_target_radius;
+  s->posture.reach_clearance = c->postures_reach_clearance;
+  s->posture.open_near_ball_x = c->postures_open_near_ball_x;
+  s->posture.open_near_gap = c->postures_open_near_gap;
+  s->posture.open_near_oppose = c->postures_open_near_oppose;
+  s->posture.open_near_thumb = c->postures_open_near_thumb;
+  s->posture.open_near_fingers = c->postures_open_near_fingers;
+  s->posture.open_high_gap = c->postures_open_high_gap;
+  s->posture.open_high_oppose = c->postures_open_high_oppose;
+  s->posture.open_high_flex = c->postures_open_high_flex;
+  s->posture.grasp_gap = c->postures_grasp_gap;
+  s->posture.grasp_oppose = c->postures_grasp_oppose;
+  s->posture.grasp_partial_oppose = c->postures_grasp_partial_oppose;
+  s->posture.grasp_partial_flex = c->postures_grasp_partial_flex;
+  s->posture.move_ball_x = c->postures_move_ball_x;
+  s->posture.move_gap = c->postures_move_gap;
+  s->posture.move_oppose = c->postures_move_oppose;
+  s->posture.move_squeeze = c->postures_move_squeeze;
+  s->posture.move_min_fingers = c->postures_move_min_fingers;
 }
 
 void st_scene_object(const stScene *s, int k, int with_offset, stRng *rng, double pos[3]) {

@@ -25,6 +25,25 @@ static void test_config_defaults(void) {
   CU_ASSERT_DOUBLE_EQUAL(c.network_secondary_input, 10.0, 0.0);
   CU_ASSERT_EQUAL(c.network_typeb_init_gene, 32768);
   CU_ASSERT_EQUAL(c.network_arch, 0);
+  /* SPEC §1-§3, §6, §8 */
+  CU_ASSERT_DOUBLE_EQUAL(c.robot_torso_min_deg, -10.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.robot_torso_max_deg, 40.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.robot_alpha_kinematic, 37.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.robot_alpha_dynamic, 100.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.robot_max_velocity_deg, 40.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.robot_control_dt, 0.05, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.scene_table_top_z, -0.08, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.scene_table_x_max - c.scene_table_x_min, 0.50, 1e-15);
+  CU_ASSERT_DOUBLE_EQUAL(c.scene_table_y_max - c.scene_table_y_min, 0.80, 1e-15);
+  CU_ASSERT_DOUBLE_EQUAL(c.scene_object_radius, 0.035, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.scene_object_mass, 0.2, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.scene_object_base_radius, 0.0175, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.scene_target_z - c.scene_table_top_z, 0.25, 1e-15);
+  CU_ASSERT_DOUBLE_EQUAL(c.scene_target_radius, 0.06, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.fitness_reach_height, 0.095, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.fitness_move_free, 0.02, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.fitness_move_max, 2.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.postures_reach_clearance, 0.15, 0.0);
   CU_ASSERT_EQUAL(st_config_validate(&c, NULL, 0), ST_OK);
 }
 
@@ -85,7 +104,7 @@ static void expect_error(const char *text, stStatus want, const char *needle) {
 
 static void test_config_errors(void) {
   expect_error("[ga]\npopulation = 10\n[robot_arm]\n", ST_ERR_PARSE,
-               ":3: section [robot_arm]: unknown section (expected one of run, network, ga, robot, scene, fitness)");
+               ":3: section [robot_arm]: unknown section (expected one of run, network, ga, robot, scene, fitness, postures)");
   expect_error("[ga]\npopsize = 10\n", ST_ERR_PARSE,
                ":2: key 'ga.popsize': unknown key (expected one of population, elites,");
   expect_error("[ga]\nmutation_rate = abc\n", ST_ERR_PARSE,

@@ -80,7 +80,25 @@ extern "C" {
   REAL(fitness, penalty_object, 1.0, 0.0, 100.0, "penalty per step with any robot part on the object") \
   REAL(fitness, move_free, 0.02, 0.0, 1.0, "object displacement below this is not penalised, m") \
   REAL(fitness, move_scale, 0.1, 0.0001, 10.0, "object-moving penalty = displacement / this (in decimetres), m") \
-  REAL(fitness, move_max, 2.0, 0.0, 100.0, "object-moving penalty cap per step")
+  REAL(fitness, move_max, 2.0, 0.0, 100.0, "object-moving penalty cap per step") \
+  REAL(postures, reach_clearance, 0.15, 0.0, 2.0, "reach start: palm centre at least this far from every object position, m (SPEC 8)") \
+  REAL(postures, open_near_ball_x, 0.02, -0.2, 0.2, "open k=0,1: ball centre ahead of the palm centre along the fingers, m") \
+  REAL(postures, open_near_gap, 0.015, -0.1, 0.3, "open k=0,1: palm above the ball top, m (hand around the ball, almost grasping)") \
+  REAL(postures, open_near_oppose, 0.5, 0.0, 1.0, "open k=0,1: thumb opposition, normalised") \
+  REAL(postures, open_near_thumb, 0.15, 0.0, 1.0, "open k=0,1: thumb flexion, normalised") \
+  REAL(postures, open_near_fingers, 0.35, 0.0, 1.0, "open k=0,1: finger flexion, normalised") \
+  REAL(postures, open_high_gap, 0.04, 0.0, 0.3, "open k=2,3: palm centred this far above the ball top, m") \
+  REAL(postures, open_high_oppose, 0.5, 0.0, 1.0, "open k=2,3: thumb opposition, normalised") \
+  REAL(postures, open_high_flex, 0.8, 0.0, 1.0, "open k=2,3: thumb and finger flexion (hand almost closed), normalised") \
+  REAL(postures, grasp_gap, 0.03, 0.0, 0.3, "grasp: palm down, centred this far above the ball top, m") \
+  REAL(postures, grasp_oppose, 0.0, 0.0, 1.0, "grasp k=0,1: thumb opposition (fingers fully extended)") \
+  REAL(postures, grasp_partial_oppose, 0.3, 0.0, 1.0, "grasp k=2,3: thumb opposition") \
+  REAL(postures, grasp_partial_flex, 0.25, 0.0, 1.0, "grasp k=2,3: thumb and finger flexion (partly extended)") \
+  REAL(postures, move_ball_x, 0.02, -0.2, 0.2, "move: ball centre ahead of the palm centre along the fingers, m") \
+  REAL(postures, move_gap, -0.001, -0.05, 0.1, "move: palm above the ball top, m (negative: pressing on it)") \
+  REAL(postures, move_oppose, 0.5, 0.0, 1.0, "move: thumb opposition, normalised") \
+  REAL(postures, move_squeeze, 0.02, 0.0, 1.0, "move: extra flexion after the thumb and fingers first touch the ball (grip)") \
+  INT(postures, move_min_fingers, 3, 1, 4, "move: fingers close until this many fingertips (besides the thumb) touch the ball")
 
 /* The configuration: one field per key, named section_key. */
 #define ST__CFG_INT(s, k, d, lo, hi, h) int s##_##k;

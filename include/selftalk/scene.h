@@ -15,6 +15,28 @@ extern "C" {
 #define ST_NOBJPOS 4 /* P0 front, P1 back, P2 left, P3 right of the centre */
 #define ST_TARGET_GENERAL 2 /* target index of the generalisation test, between T0 and T1 */
 
+/* How the initial postures are built (keys postures.*; see selftalk/postures.h). */
+typedef struct stPostureDef {
+  double reach_clearance;
+  double open_near_ball_x;
+  double open_near_gap;
+  double open_near_oppose;
+  double open_near_thumb;
+  double open_near_fingers;
+  double open_high_gap;
+  double open_high_oppose;
+  double open_high_flex;
+  double grasp_gap;
+  double grasp_oppose;
+  double grasp_partial_oppose;
+  double grasp_partial_flex;
+  double move_ball_x;
+  double move_gap;
+  double move_oppose;
+  double move_squeeze;
+  int move_min_fingers;
+} stPostureDef;
+
 typedef struct stScene {
   double table_lo[3], table_hi[3]; /* table-top box, world frame */
   double table_top_z;
@@ -23,6 +45,7 @@ typedef struct stScene {
   double obj_pos[ST_NOBJPOS][3];   /* resting object positions (sphere centres) */
   double target[3][3];             /* T0, T1, generalisation target */
   double obj_offset, target_offset, target_radius;
+  stPostureDef posture;            /* initial postures (SPEC §8) */
 } stScene;
 
 void st_scene_from_config(const stConfig *cfg, stScene *scene);

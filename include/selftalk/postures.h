@@ -1,0 +1,68 @@
+/* SPDX-License-Identifier: MIT
+ * libselftalk: the 16 initial postures of the primitive stages (thesis §2.5.3, SPEC §8) -
+ * four per primitive; posture k of a primitive is used with object position k (and target
+ * k mod 2). The integrated stage and the post-evaluations start from the four reach postures.
+ *
+ * Postures are computed, deterministically, by inverse kinematics (selftalk/ik.h) from the
+ * scene's object positions, from fixed start postures; nothing random is involved and the
+ * result depends only on the robot and the scene. Each call allocates a kinematic stWorld
+ * (contact checks) and frees it before returning: call these at run or trial set-up, not in
+ * a control loop (st_postures_all computes the 16 once).
+ *
+ * How each is built (numbers in lib/postures.c, top):
+ *   reach  k: the palm centre is placed (position only) at a fixed offset from the centre of
+ *             the four object positions, from four different start postures; torso yaw and
+ *             pitch at 0 degrees, thumb and fingers fully extended. Palm >= 0.15 m from every
+ *             object position, above the table, touching nothing.
+ *   open   k=0,1: palm down 1.5 cm above the ball top, its centre 2 cm behind the ball along
+ *             the fingers, thumb half opposed, thumb and fingers partly closed (0.15 / 0.35)
+ *             around the ball without touching it ("almost grasping").
+ *   open   k=2,3: palm down, centred 4 cm above the ball top, hand almost closed (flexion 0.8).
+ *   grasp  k: palm down, centred 3 cm above the ball top; fingers extended (k=0,1) or
+ *             partly flexed (0.25, k=2,3).
+ *   move   k: palm down on the ball top (1 mm contact), ball centre 2 cm ahead of the palm
+ *             centre, thumb half opposed; the thumb, then the fingers, close until they touch
+ *             the ball (the thumb; 3 fingertips), on a 0.01 grid, then squeeze by 0.02 more.
+ *             In kinematic mode the check asks for >= 3 touch sensors on the object and
+ *             d_g < 0.03 m; the SPEC §8 property that the object stays 3 s in the hand with
+ *             frozen finger commands needs dynamic mode and is verified there. */
+#ifndef SELFTALK_POSTURES_H
+#define SELFTALK_POSTURES_H
+
+#include "selftalk/robot.h"
+#include "selftalk/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Primitives, in the order of the linguistic inputs (SPEC §4). */
+enum { ST_PRIM_REACH = 0, ST_PRIM_OPEN, ST_PRIM_GRASP, ST_PRIM_MOVE, ST_NPRIM };
+#define ST_NPOSTURE 4 /* postures per primitive (= object positions) */
+
+/* "reach", "open", "grasp", "move"; "?" for anything else. */
+const char *st_primitive_name(int primitive);
+
+/* Initial posture k (0..3) of a primitive (ST_PRIM_*), for object position k of the scene:
+ * fills qhat[12] (SPEC §3 order). Fails with ST_ERR_ARG on a bad primitive or k, ST_ERR_RANGE
+ * when the inverse kinematics cannot reach the posture's target or the result fails
+ * st_posture_check (both possible only with a scene or robot far from the defaults); err
+ * names the posture and the reason. */
+stStatus st_posture(const stRobot *robot, const stScene *scene, int primitive, int k,
+                    double qhat[ST_NDOF], char *err, size_t errsz);
+
+/* All 16 postures: qhat[primitive][k]. */
+stStatus st_postures_all(const stRobot *robot, const stScene *scene,
+                         double qhat[ST_NPRIM][ST_NPOSTURE][ST_NDOF], char *err, size_t errsz);
+
+/* 1 when qhat has the SPEC §8 properties of posture k of a primitive (object at scene
+ * position k), else 0 with the first failed property in why (nullable). Reach postures are
+ * also checked to be distinct from the other three reach postures st_posture computes. */
+int st_posture_check(const stRobot *robot, const stScene *scene, int primitive, int k,
+                     const double qhat[ST_NDOF], char *why, size_t n);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,428 @@
+/* SPDX-License-Identifier: MIT
+ * Inverse kinematics (selftalk/ik.h) and the 16 initial postures of SPEC §8
+ * (selftalk/postures.h). Run from the repository root: the default robot is
+ * data/icub_left_arm.urdf. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "selftalk/ik.h"
+#include "selftalk/postures.h"
+#include "selftalk/sensors.h"
+#include "selftalk/world.h"
+#include "test_util.h"
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+typedef struct fixture {
+  stConfig cfg;
+  stRobot *robot;
+  stScene scene;
+  stSensorDef sd;
+} fixture;
+
+static int fixture_open(fixture *f) {
+  char err[512];
+  st_config_default(&f->cfg);
+  f->robot = NULL;
+  if (st_robot_create(&f->cfg, &f->robot, err, sizeof err)) {
+    fprintf(stderr, "\n  %s\n", err);
+    return 0;
+  }
+  st_scene_from_config(&f->cfg, &f->scene);
+  st_sensor_def_from_config(&f->cfg, &f->sd);
+  return 1;
+}
+
+static void fixture_close(fixture *f) { st_robot_destroy(f->robot); }
+
+/* palm pose of a posture */
+static void palm_pose(const stRobot *r, const double *q, double pos[3], double normal[3]) {
+  double(*R)[9] = malloc(sizeof(double[9]) * (size_t)r->nbody);
+  double(*p)[3] = malloc(sizeof(double[3]) * (size_t)r->nbody);
+  st_robot_fk(r, q, R, p);
+  for (int i = 0; i < 3; i++) {
+    pos[i] = p[r->palm_body][i];
+    normal[i] = R[r->palm_body][3 * i + 2];
+  }
+  free(R);
+  free(p);
+}
+
+static double dist3(const double *a, const double *b) {
+  return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+              (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* known postures (degrees, torso + arm) whose FK gives reachable targets */
+static const double KNOWN_DEG[][9] = {
+    {0, 0, -30, 20, 0, 90, 0, 0, 0},       {10, 15, -60, 25, 10, 30, 80, -15, 0},
+    {-5, 5, -20, 60, 0, 80, 0, 0, 0},      {0, 0, -50, 10, 60, 100, 80, -20, 10},
+    {20, 30, -70, 40, 20, 50, -40, -60, 30}, {0, -5, -10, 30, 30, 100, 45, -30, -10},
+};
+#define NKNOWN (int)(sizeof KNOWN_DEG / sizeof KNOWN_DEG[0])
+
+static void deg_to_qhat(const stRobot *r, const double *deg, double q[ST_NDOF]) {
+  for (int d = 0; d < 9; d++) q[d] = st_robot_dof_qhat(r, d, deg[d] * DEG);
+  q[9] = 0.3, q[10] = 0.6, q[11] = 0.2;
+}
+
+/* IK from a neutral start reaches FK-generated targets: position alone and position + palm
+ * normal; hand DOF untouched, qhat within [0, 1] */
+static void test_ik_reaches_fk_targets(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  const stRobot *r = f.robot;
+  static const double start_deg[9] = {0, 0, -40, 30, 0, 90, 80, -30, 0};
+  for (int i = 0; i < NKNOWN; i++) {
+    double known[ST_NDOF], pos[3], normal[3];
+    deg_to_qhat(r, KNOWN_DEG[i], known);
+    palm_pose(r, known, pos, normal);
+    for (int with_dir = 0; with_dir <= 1; with_dir++) {
+      double q[ST_NDOF];
+      deg_to_qhat(r, start_deg, q);
+      q[9] = 0.3, q[10] = 0.6, q[11] = 0.2; /* same hand: the palm frame does not depend on it */
+      stIkTarget t = st_ik_target(r->palm_body, pos);
+      static const double z[3] = {0, 0, 1};
+      if (with_dir) st_ik_target_align(&t, 0, z, normal, 0.01);
+      stIkDef def = st_ik_default_def();
+      stIkResult res;
+      stStatus st = st_ik_solve(r, &def, &t, q, &res);
+      CU_ASSERT_EQUAL(st, ST_OK);
+      CU_ASSERT(res.converged);
+      CU_ASSERT(res.pos_err < 1e-3);
+      if (with_dir) {
+        CU_ASSERT(res.dir_err[0] < 1e-3);
+      }
+      /* independently: FK of the answer */
+      double got[3], gotn[3];
+      palm_pose(r, q, got, gotn);
+      CU_ASSERT(dist3(got, pos) < 1e-3);
+      if (with_dir) {
+        CU_ASSERT(gotn[0] * normal[0] + gotn[1] * normal[1] + gotn[2] * normal[2] > cos(1e-3));
+      }
+      for (int d = 0; d < ST_NDOF; d++) CU_ASSERT(q[d] >= 0.0 && q[d] <= 1.0);
+      CU_ASSERT(q[9] == 0.3 && q[10] == 0.6 && q[11] == 0.2);
+      if (st != ST_OK || dist3(got, pos) >= 1e-3)
+        fprintf(stderr, "\n  known posture %d (dir %d): error %.2e m after %d iterations\n", i,
+                with_dir, res.pos_err, res.iterations);
+    }
+  }
+  fixture_close(&f);
+}
+
+/* a DOF of zero mobility does not move; a point off the body origin is placed */
+static void test_ik_fixed_dof_and_point(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  const stRobot *r = f.robot;
+  double known[ST_NDOF], q[ST_NDOF];
+  deg_to_qhat(r, KNOWN_DEG[1], known);
+  known[0] = known[1] = st_robot_dof_qhat(r, 0, 0.0);
+  /* target: a point 5 cm along the palm normal */
+  double(*R)[9] = malloc(sizeof(double[9]) * (size_t)r->nbody);
+  double(*p)[3] = malloc(sizeof(double[3]) * (size_t)r->nbody);
+  st_robot_fk(r, known, R, p);
+  double pos[3];
+  for (int i = 0; i < 3; i++) pos[i] = p[r->palm_body][i] + 0.05 * R[r->palm_body][3 * i + 2];
+  deg_to_qhat(r, KNOWN_DEG[0], q);
+  const double torso0 = q[0], torso1 = q[1];
+  stIkTarget t = st_ik_target(r->palm_body, pos);
+  t.point[2] = 0.05;
+  stIkDef def = st_ik_default_def();
+  def.dof_weight[0] = def.dof_weight[1] = 0.0;
+  stIkResult res;
+  CU_ASSERT_EQUAL(st_ik_solve(r, &def, &t, q, &res), ST_OK);
+  CU_ASSERT(q[0] == torso0 && q[1] == torso1);
+  st_robot_fk(r, q, R, p);
+  double got[3];
+  for (int i = 0; i < 3; i++) got[i] = p[r->palm_body][i] + 0.05 * R[r->palm_body][3 * i + 2];
+  CU_ASSERT(dist3(got, pos) < 1e-3);
+  free(R);
+  free(p);
+  fixture_close(&f);
+}
+
+/* two runs are bit-identical */
+static void test_ik_deterministic(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  const stRobot *r = f.robot;
+  double known[ST_NDOF], pos[3], normal[3];
+  deg_to_qhat(r, KNOWN_DEG[4], known);
+  palm_pose(r, known, pos, normal);
+  double q1[ST_NDOF], q2[ST_NDOF];
+  deg_to_qhat(r, KNOWN_DEG[2], q1);
+  memcpy(q2, q1, sizeof q2);
+  stIkTarget t = st_ik_target(r->palm_body, pos);
+  static const double z[3] = {0, 0, 1};
+  st_ik_target_align(&t, 0, z, normal, 0.01);
+  stIkDef def = st_ik_default_def();
+  stIkResult r1, r2;
+  stStatus s1 = st_ik_solve(r, &def, &t, q1, &r1);
+  stStatus s2 = st_ik_solve(r, &def, &t, q2, &r2);
+  CU_ASSERT_EQUAL(s1, s2);
+  CU_ASSERT(memcmp(q1, q2, sizeof q1) == 0);
+  CU_ASSERT(memcmp(&r1.pos_err, &r2.pos_err, sizeof r1.pos_err) == 0);
+  CU_ASSERT_EQUAL(r1.iterations, r2.iterations);
+  fixture_close(&f);
+}
+
+/* unreachable targets, bad arguments */
+static void test_ik_errors(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  const stRobot *r = f.robot;
+  double q[ST_NDOF];
+  deg_to_qhat(r, KNOWN_DEG[0], q);
+  static const double far[3] = {1.5, 0.0, 0.0};
+  stIkTarget t = st_ik_target(r->palm_body, far);
+  stIkDef def = st_ik_default_def();
+  stIkResult res;
+  CU_ASSERT_EQUAL(st_ik_solve(r, &def, &t, q, &res), ST_ERR_RANGE);
+  CU_ASSERT(!res.converged);
+  CU_ASSERT(res.pos_err > 0.5);
+  CU_ASSERT(res.iterations <= def.max_iter);
+  for (int d = 0; d < ST_NDOF; d++) CU_ASSERT(q[d] >= 0.0 && q[d] <= 1.0);
+  stIkResult ev;
+  CU_ASSERT_EQUAL(st_ik_evaluate(r, &t, q, &ev), ST_OK);
+  CU_ASSERT(fabs(ev.pos_err - res.pos_err) < 1e-12);
+
+  stIkTarget bad = t;
+  bad.body = r->nbody;
+  CU_ASSERT_EQUAL(st_ik_solve(r, &def, &bad, q, NULL), ST_ERR_ARG);
+  bad = t;
+  bad.pos_weight = 0.0; /* nothing to do */
+  CU_ASSERT_EQUAL(st_ik_solve(r, &def, &bad, q, NULL), ST_ERR_ARG);
+  bad = t;
+  bad.dir_weight[1] = 1.0; /* zero axis vectors */
+  CU_ASSERT_EQUAL(st_ik_solve(r, &def, &bad, q, NULL), ST_ERR_ARG);
+  stIkDef bd = def;
+  bd.damping = 0.0;
+  CU_ASSERT_EQUAL(st_ik_solve(r, &bd, &t, q, NULL), ST_ERR_ARG);
+  bd = def;
+  bd.dof_weight[3] = -1.0;
+  CU_ASSERT_EQUAL(st_ik_solve(r, &bd, &t, q, NULL), ST_ERR_ARG);
+  fixture_close(&f);
+}
+
+/* every posture is produced and passes its own check; repeated calls are bit-identical */
+static void test_postures_all(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  static double all[ST_NPRIM][ST_NPOSTURE][ST_NDOF];
+  char err[512] = "";
+  stStatus st = st_postures_all(f.robot, &f.scene, all, err, sizeof err);
+  if (st) fprintf(stderr, "\n  %s\n", err);
+  CU_ASSERT_EQUAL_FATAL(st, ST_OK);
+  for (int p = 0; p < ST_NPRIM; p++)
+    for (int k = 0; k < ST_NPOSTURE; k++) {
+      double q[ST_NDOF];
+      st = st_posture(f.robot, &f.scene, p, k, q, err, sizeof err);
+      if (st) fprintf(stderr, "\n  %s\n", err);
+      CU_ASSERT_EQUAL(st, ST_OK);
+      CU_ASSERT(memcmp(q, all[p][k], sizeof q) == 0);
+      char why[256] = "";
+      int ok = st_posture_check(f.robot, &f.scene, p, k, q, why, sizeof why);
+      if (!ok) fprintf(stderr, "\n  %s %d: %s\n", st_primitive_name(p), k, why);
+      CU_ASSERT(ok);
+    }
+  fixture_close(&f);
+}
+
+/* the SPEC §8 properties, asserted here independently of st_posture_check */
+typedef struct state {
+  stQuantities q;
+  stContacts c;
+  double tipz_min;
+  int ntouch;
+} state;
+
+static void posture_state(fixture *f, int p, int k, double q[ST_NDOF], state *s) {
+  char err[512];
+  CU_ASSERT_EQUAL_FATAL(st_posture(f->robot, &f->scene, p, k, q, err, sizeof err), ST_OK);
+  stWorld *w = NULL;
+  CU_ASSERT_EQUAL_FATAL(st_world_create(f->robot, &f->scene, &w, err, sizeof err), ST_OK);
+  st_world_reset(w, q, f->scene.obj_pos[k], f->scene.target[k % 2]);
+  st_quantities(w, &f->sd, &s->q);
+  s->c = w->contacts;
+  s->tipz_min = 1e9;
+  for (int i = 0; i < ST_NTIP; i++) s->tipz_min = fmin(s->tipz_min, s->q.tip[i][2]);
+  s->ntouch = 0;
+  for (int i = 0; i < ST_NTOUCH; i++) s->ntouch += s->c.touch_object[i];
+  st_world_destroy(w);
+}
+
+static void test_postures_reach(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  const stRobot *r = f.robot;
+  double q[ST_NPOSTURE][ST_NDOF], palm[ST_NPOSTURE][3];
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    state s;
+    posture_state(&f, ST_PRIM_REACH, k, q[k], &s);
+    memcpy(palm[k], s.q.palm, sizeof palm[k]);
+    CU_ASSERT(fabs(st_robot_dof_angle(r, ST_DOF_TORSO_YAW, q[k][0])) < 1e-9);
+    CU_ASSERT(fabs(st_robot_dof_angle(r, ST_DOF_TORSO_PITCH, q[k][1])) < 1e-9);
+    CU_ASSERT(q[k][ST_DOF_THUMB_FLEX] == 0.0 && q[k][ST_DOF_FINGER_FLEX] == 0.0);
+    for (int j = 0; j < ST_NOBJPOS; j++) CU_ASSERT(dist3(s.q.palm, f.scene.obj_pos[j]) >= 0.15);
+    CU_ASSERT(!s.c.arm_table && !s.c.robot_object);
+    CU_ASSERT(s.q.palm[2] > f.scene.table_top_z && s.tipz_min > f.scene.table_top_z);
+  }
+  /* four distinct arm postures, hands apart */
+  for (int a = 0; a < ST_NPOSTURE; a++)
+    for (int b = a + 1; b < ST_NPOSTURE; b++) {
+      double mx = 0.0;
+      for (int d = ST_DOF_SHOULDER_PITCH; d <= ST_DOF_WRIST_YAW; d++)
+        mx = fmax(mx, fabs(q[a][d] - q[b][d]));
+      CU_ASSERT(mx >= 0.1);
+      CU_ASSERT(dist3(palm[a], palm[b]) >= 0.05);
+    }
+  fixture_close(&f);
+}
+
+static void test_postures_open(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    double q[ST_NDOF];
+    state s;
+    posture_state(&f, ST_PRIM_OPEN, k, q, &s);
+    const double *obj = f.scene.obj_pos[k];
+    double gap = s.q.palm[2] - (obj[2] + f.scene.obj_radius);
+    CU_ASSERT(hypot(s.q.palm[0] - obj[0], s.q.palm[1] - obj[1]) <= 0.03); /* above the object */
+    CU_ASSERT(gap > 0.0);
+    CU_ASSERT(!s.c.arm_table && !s.c.robot_object);
+    if (k < 2) { /* around the object, almost grasping it */
+      CU_ASSERT(gap < 0.03);
+      CU_ASSERT(q[ST_DOF_FINGER_FLEX] >= 0.3 && q[ST_DOF_FINGER_FLEX] <= 0.5);
+      CU_ASSERT(s.q.d_g < 0.05);
+    } else { /* a few centimetres above, almost closed */
+      CU_ASSERT(gap >= 0.02 && gap <= 0.08);
+      CU_ASSERT(q[ST_DOF_THUMB_FLEX] >= 0.7 && q[ST_DOF_FINGER_FLEX] >= 0.7);
+      CU_ASSERT(s.q.h <= 0.3);
+    }
+  }
+  fixture_close(&f);
+}
+
+static void test_postures_grasp(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    double q[ST_NDOF], pos[3], normal[3];
+    state s;
+    posture_state(&f, ST_PRIM_GRASP, k, q, &s);
+    palm_pose(f.robot, q, pos, normal);
+    CU_ASSERT(0.5 * (1.0 - normal[2]) > 0.9); /* p from the palm normal */
+    const double *obj = f.scene.obj_pos[k];
+    double gap = pos[2] - (obj[2] + f.scene.obj_radius);
+    CU_ASSERT(gap >= 0.01 && gap <= 0.04); /* palm a few centimetres above the ball top */
+    CU_ASSERT(hypot(pos[0] - obj[0], pos[1] - obj[1]) <= 0.02);
+    CU_ASSERT(s.q.d_r < 0.05);
+    CU_ASSERT(!s.c.arm_table && !s.c.robot_object);
+    if (k < 2) {
+      CU_ASSERT(q[ST_DOF_THUMB_FLEX] == 0.0 && q[ST_DOF_FINGER_FLEX] == 0.0);
+    } else {
+      CU_ASSERT(q[ST_DOF_FINGER_FLEX] > 0.1 && q[ST_DOF_FINGER_FLEX] < 0.5 &&
+                q[ST_DOF_THUMB_FLEX] > 0.1 && q[ST_DOF_THUMB_FLEX] < 0.5);
+    }
+  }
+  fixture_close(&f);
+}
+
+static void test_postures_move(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    double q[ST_NDOF];
+    state s;
+    posture_state(&f, ST_PRIM_MOVE, k, q, &s);
+    CU_ASSERT(s.q.p > 0.9);
+    CU_ASSERT(s.ntouch >= 3);
+    CU_ASSERT(s.c.touch_object[ST_TOUCH_THUMB]); /* thumb opposed to the fingers */
+    CU_ASSERT(s.q.touching);
+    CU_ASSERT(s.q.d_g < 0.03);
+    CU_ASSERT(!s.c.arm_table);
+    CU_ASSERT(s.tipz_min > f.scene.table_top_z);
+  }
+  fixture_close(&f);
+}
+
+/* the check rejects postures that lack the properties, saying why */
+static void test_posture_check_rejects(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  const stRobot *r = f.robot;
+  char err[512], why[256];
+  double reach[ST_NDOF], grasp[ST_NDOF], move[ST_NDOF], q[ST_NDOF];
+  CU_ASSERT_EQUAL_FATAL(st_posture(r, &f.scene, ST_PRIM_REACH, 0, reach, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_posture(r, &f.scene, ST_PRIM_GRASP, 0, grasp, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_posture(r, &f.scene, ST_PRIM_MOVE, 1, move, err, sizeof err), ST_OK);
+
+  memcpy(q, reach, sizeof q);
+  q[ST_DOF_TORSO_YAW] += 0.05;
+  CU_ASSERT(!st_posture_check(r, &f.scene, ST_PRIM_REACH, 0, q, why, sizeof why));
+  ST_ASSERT_CONTAINS(why, "torso_yaw");
+  memcpy(q, reach, sizeof q);
+  q[ST_DOF_FINGER_FLEX] = 0.5;
+  CU_ASSERT(!st_posture_check(r, &f.scene, ST_PRIM_REACH, 0, q, why, sizeof why));
+  ST_ASSERT_CONTAINS(why, "flexion");
+  /* reach keeps its clearance from every object position, not only its own */
+  stScene near = f.scene;
+  double pos[3], normal[3];
+  palm_pose(r, reach, pos, normal);
+  near.obj_pos[3][0] = pos[0], near.obj_pos[3][1] = pos[1], near.obj_pos[3][2] = pos[2] - 0.1;
+  CU_ASSERT(!st_posture_check(r, &near, ST_PRIM_REACH, 0, reach, why, sizeof why));
+  ST_ASSERT_CONTAINS(why, "from object position 3");
+  /* reach is not palm down */
+  CU_ASSERT(!st_posture_check(r, &f.scene, ST_PRIM_GRASP, 0, reach, why, sizeof why));
+  ST_ASSERT_CONTAINS(why, "palm down");
+  /* a grasp posture for another object position is not above this one */
+  CU_ASSERT(!st_posture_check(r, &f.scene, ST_PRIM_GRASP, 1, grasp, why, sizeof why));
+  /* the move posture with the hand open holds nothing */
+  memcpy(q, move, sizeof q);
+  q[ST_DOF_THUMB_FLEX] = q[ST_DOF_FINGER_FLEX] = 0.0;
+  CU_ASSERT(!st_posture_check(r, &f.scene, ST_PRIM_MOVE, 1, q, why, sizeof why));
+  ST_ASSERT_CONTAINS(why, "touch");
+  /* out of range */
+  memcpy(q, move, sizeof q);
+  q[3] = 1.5;
+  CU_ASSERT(!st_posture_check(r, &f.scene, ST_PRIM_MOVE, 1, q, why, sizeof why));
+  ST_ASSERT_CONTAINS(why, "qhat[3]");
+  CU_ASSERT(!st_posture_check(r, &f.scene, 4, 0, move, why, sizeof why));
+  CU_ASSERT(!st_posture_check(r, &f.scene, 0, 4, move, NULL, 0));
+  fixture_close(&f);
+}
+
+static void test_posture_errors(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  char err[512];
+  double q[ST_NDOF];
+  CU_ASSERT_EQUAL(st_posture(f.robot, &f.scene, ST_NPRIM, 0, q, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "primitive 4");
+  CU_ASSERT_EQUAL(st_posture(f.robot, &f.scene, 0, -1, q, err, sizeof err), ST_ERR_ARG);
+  CU_ASSERT_STRING_EQUAL(st_primitive_name(ST_PRIM_MOVE), "move");
+  CU_ASSERT_STRING_EQUAL(st_primitive_name(9), "?");
+  /* an object out of reach: the IK says so */
+  stScene far = f.scene;
+  far.obj_pos[2][0] = 1.2;
+  CU_ASSERT_EQUAL(st_posture(f.robot, &far, ST_PRIM_GRASP, 2, q, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "posture grasp 2: inverse kinematics");
+  fixture_close(&f);
+}
+
+void st_suite_postures(void) {
+  ST_ADD_SUITE("postures");
+  ST_ADD_TEST(test_ik_reaches_fk_targets);
+  ST_ADD_TEST(test_ik_fixed_dof_and_point);
+  ST_ADD_TEST(test_ik_deterministic);
+  ST_ADD_TEST(test_ik_errors);
+  ST_ADD_TEST(test_postures_all);
+  ST_ADD_TEST(test_postures_reach);
+  ST_ADD_TEST(test_postures_open);
+  ST_ADD_TEST(test_postures_grasp);
+  ST_ADD_TEST(test_postures_move);
+  ST_ADD_TEST(test_posture_check_rejects);
+  ST_ADD_TEST(test_posture_errors);
+}
