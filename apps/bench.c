@@ -94,11 +94,11 @@ int main(int argc, char **argv) {
   /* the baseline, measured in the same run: every geometry through ODE's narrow phase, no
    * culling (stWorld.reference_contacts); same trials, same results */
   double *rate = malloc(sizeof *rate * (size_t)reps), *base = malloc(sizeof *base * (size_t)reps);
-  double check = 0, check_base = 0;
+  double check = 0, check_base = 0, *per_trial = malloc(sizeof *per_trial * (size_t)trials);
   for (int rr = 0; rr < 2 * reps; rr++) {
     const int reference = rr % 2, r = rr / 2; /* interleaved so drifts hit both alike */
     double t0 = now(), sum = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : sum)
+#pragma omp parallel num_threads(threads)
     {
       stWorld *w = NULL;
       char e[256];
@@ -106,11 +106,12 @@ int main(int argc, char **argv) {
         w->reference_contacts = reference;
 #pragma omp for schedule(dynamic, 16)
         for (int t = 0; t < trials; t++)
-          sum += kin_trial(w, &sd, &np[t % NGENOME], q0, scene.obj_pos[t % 4], scene.target[t % 2], steps);
+          per_trial[t] = kin_trial(w, &sd, &np[t % NGENOME], q0, scene.obj_pos[t % 4], scene.target[t % 2], steps);
         st_world_destroy(w);
       }
     }
     double dt = now() - t0;
+    for (int t = 0; t < trials; t++) sum += per_trial[t]; /* in trial order: thread-independent */
     (reference ? base : rate)[r] = (double)trials * steps / dt;
     *(reference ? &check_base : &check) += sum;
   }
@@ -123,6 +124,7 @@ int main(int argc, char **argv) {
          med_base, med_base / threads, med / med_base, check == check_base ? "yes" : "NO");
   free(rate);
   free(base);
+  free(per_trial);
   free(np);
   st_robot_destroy(robot);
   return 0;
