@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT
  * bench: speed of the simulation with a network in the loop.
  *
- *   bench [--mode kinematic] [--threads N] [--reps R] [--trials T] [--config FILE] [--set k=v]
+ *   bench [--mode kinematic] [--threads N] [--reps R] [--trials T] [--no-baseline]
+ *         [--config FILE] [--set k=v]
  *
  * Runs T trials of 60 control steps (50 ms each) per repetition, random genotypes, one world
  * per thread, and prints the median over R repetitions:
@@ -54,13 +55,14 @@ int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *mode = "kinematic";
-  int threads = 0, reps = 5, trials = 2000;
+  int threads = 0, reps = 5, trials = 2000, baseline = 1;
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     if (!strcmp(argv[i], "--mode") && i + 1 < argc) mode = argv[++i];
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--reps") && i + 1 < argc) reps = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--trials") && i + 1 < argc) trials = atoi(argv[++i]);
+    else if (!strcmp(argv[i], "--no-baseline")) baseline = 0; /* e.g. for profiling */
     else app_die(prog, "unknown or incomplete option '%s' (see the header of apps/bench.c)", argv[i]);
   }
   if (strcmp(mode, "kinematic")) app_die(prog, "--mode '%s': not available (expected kinematic)", mode);
@@ -97,6 +99,7 @@ int main(int argc, char **argv) {
   double check = 0, check_base = 0, *per_trial = malloc(sizeof *per_trial * (size_t)trials);
   for (int rr = 0; rr < 2 * reps; rr++) {
     const int reference = rr % 2, r = rr / 2; /* interleaved so drifts hit both alike */
+    if (reference && !baseline) continue;
     double t0 = now(), sum = 0;
 #pragma omp parallel num_threads(threads)
     {
@@ -120,7 +123,8 @@ int main(int argc, char **argv) {
   double med = rate[reps / 2], med_base = base[reps / 2];
   printf("mode=%s steps_per_s=%.0f per_core=%.0f threads=%d reps=%d trials=%d steps_per_trial=%d\n",
          mode, med, med / threads, threads, reps, trials, steps);
-  printf("baseline=reference_contacts steps_per_s=%.0f per_core=%.0f speedup=%.2f same_result=%s\n",
+  if (baseline)
+    printf("baseline=reference_contacts steps_per_s=%.0f per_core=%.0f speedup=%.2f same_result=%s\n",
          med_base, med_base / threads, med / med_base, check == check_base ? "yes" : "NO");
   free(rate);
   free(base);

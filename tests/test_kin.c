@@ -162,6 +162,17 @@ static void test_touch_and_contacts(void) {
   CU_ASSERT_EQUAL(w->contacts.touch_object[ST_TOUCH_PALM], 1);
   CU_ASSERT_EQUAL(w->contacts.robot_object, 1);
   CU_ASSERT_EQUAL(w->contacts.arm_table, 0);
+  /* touching (a sensor on the object) and lifted (on the robot, off the table) */
+  stSensorDef sd0;
+  st_sensor_def_from_config(&g_cfg, &sd0);
+  stQuantities q0;
+  st_quantities(w, &sd0, &q0);
+  CU_ASSERT_EQUAL(q0.touching, 1);
+  CU_ASSERT_EQUAL(q0.lifted, 1);
+  st_world_reset(w, qhat, g_scene.obj_pos[1], g_scene.target[0]);
+  st_quantities(w, &sd0, &q0);
+  CU_ASSERT_EQUAL(q0.touching, 0);
+  CU_ASSERT_EQUAL(q0.lifted, 0);
   /* raise the table so its top slab (3 cm) contains the palm centre: table contact on the palm
    * and the arm, no object contact */
   stConfig c = g_cfg;
@@ -207,6 +218,8 @@ static void test_quantities(void) {
   st_quantities(w, &sd, &q);
   CU_ASSERT_DOUBLE_EQUAL(q.d_r, 0.05, 1e-12);
   CU_ASSERT_DOUBLE_EQUAL(q.d_mhat, 0.13, 1e-12);
+  /* object to target: (-0.03, -0.12, 0.105) -> sqrt(0.0009 + 0.0144 + 0.011025) */
+  CU_ASSERT_DOUBLE_EQUAL(q.d_m, sqrt(0.0009 + 0.0144 + 0.011025), 1e-12);
   CU_ASSERT_DOUBLE_EQUAL(q.h, 1.0 - 0.4, 1e-12); /* 1 - mean(0.3, 0.5) */
   /* palm normal from the frame: unit, p = (1 - n_z) / 2 */
   double nn = sqrt(q.normal[0] * q.normal[0] + q.normal[1] * q.normal[1] + q.normal[2] * q.normal[2]);
