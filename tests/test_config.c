@@ -104,7 +104,7 @@ static void expect_error(const char *text, stStatus want, const char *needle) {
 
 static void test_config_errors(void) {
   expect_error("[ga]\npopulation = 10\n[robot_arm]\n", ST_ERR_PARSE,
-               ":3: section [robot_arm]: unknown section (expected one of run, network, ga, robot, scene, fitness, postures)");
+               ":3: section [robot_arm]: unknown section (expected one of run, network, ga, robot,");
   expect_error("[ga]\npopsize = 10\n", ST_ERR_PARSE,
                ":2: key 'ga.popsize': unknown key (expected one of population, elites,");
   expect_error("[ga]\nmutation_rate = abc\n", ST_ERR_PARSE,

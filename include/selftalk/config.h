@@ -98,7 +98,18 @@ extern "C" {
   REAL(postures, move_gap, -0.001, -0.05, 0.1, "move: palm above the ball top, m (negative: pressing on it)") \
   REAL(postures, move_oppose, 0.5, 0.0, 1.0, "move: thumb opposition, normalised") \
   REAL(postures, move_squeeze, 0.02, 0.0, 1.0, "move: extra flexion after the thumb and fingers first touch the ball (grip)") \
-  INT(postures, move_min_fingers, 3, 1, 4, "move: fingers close until this many fingertips (besides the thumb) touch the ball")
+  INT(postures, move_min_fingers, 3, 1, 4, "move: fingers close until this many fingertips (besides the thumb) touch the ball") \
+  ENUM(dynamics, solver, 0, "quickstep|step", "ODE stepper: quickstep (iterative; its constraint shuffling uses a per-thread generator seeded per trial) or step (direct, slower)") \
+  REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \
+  INT(dynamics, iterations, 20, 1, 1000, "quickstep solver iterations per sub-step") \
+  REAL(dynamics, gravity, 9.81, 0.0, 100.0, "gravity, m/s^2 (downwards)") \
+  REAL(dynamics, friction, 1.0, 0.0, 100.0, "Coulomb friction coefficient of robot-object and object-table contacts") \
+  REAL(dynamics, erp, 0.2, 0.0, 1.0, "error reduction parameter of joints and contacts") \
+  REAL(dynamics, cfm, 1e-5, 0.0, 1.0, "constraint force mixing of joints and contacts") \
+  INT(dynamics, max_contacts, 4, 1, 64, "contact points generated per colliding geometry pair") \
+  REAL(dynamics, effort_scale, 1.0, 0.0, 1000.0, "joint motor torque limit = URDF effort times this") \
+  REAL(dynamics, fall_margin, 0.0, 0.0, 1.0, "the object has fallen under the table when its centre is this far below the table top, m")
+  /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */
 
 /* The configuration: one field per key, named section_key. */
 #define ST__CFG_INT(s, k, d, lo, hi, h) int s##_##k;
