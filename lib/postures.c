@@ -74,9 +74,7 @@ static const double START_DEG[9] = {0, 0, -40, 30, 0, 90, 80, -30, 0};
 
 /* ---------------------------------------------------------------------------------------- */
 
-static const char *const PRIM_NAMES[ST_NPRIM] = {"reach", "open", "grasp", "move"};
 
-const char *st_primitive_name(int p) { return p >= 0 && p < ST_NPRIM ? PRIM_NAMES[p] : "?"; }
 
 /* torso and arm from degrees (torso forced to 0), hand open */
 static void start_posture(const stRobot *r, const double deg[9], double q[ST_NDOF]) {

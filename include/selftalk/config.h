@@ -81,6 +81,29 @@ extern "C" {
   REAL(fitness, move_free, 0.02, 0.0, 1.0, "object displacement below this is not penalised, m") \
   REAL(fitness, move_scale, 0.1, 0.0001, 10.0, "object-moving penalty = displacement / this (in decimetres), m") \
   REAL(fitness, move_max, 2.0, 0.0, 100.0, "object-moving penalty cap per step") \
+  REAL(fitness, focus_weight, 0.2, 0.0, 1.0, "eq. 2.4: S = w f_f + (1 - w) s_p when the focus is correct, w f_f otherwise") \
+  REAL(fitness, decay, 10.0, 0.0, 1000.0, "distance terms are exp(-decay d) (eq. 2.5-2.8, 2.12), 1/m") \
+  REAL(fitness, open_h, 0.7, 0.0, 1.0, "open: openness the step fitness peaks at and the success needs (h > this; eq. 2.6)") \
+  REAL(fitness, grasp_h, 0.4, 0.0, 1.0, "grasp: openness the step fitness peaks at and the success needs (h < this; eq. 2.7)") \
+  REAL(fitness, success_dist, 0.03, 0.0, 1.0, "reach/open (d_r), grasp (d_g), simplified move (d_mhat) succeed below this, m") \
+  REAL(fitness, palm_down, 0.9, 0.0, 1.0, "open and grasp success need p above this") \
+  REAL(fitness, bonus, 10.0, 0.0, 1000.0, "bonus per successful trial (eq. 2.3)") \
+  REAL(fitness, scale, 100.0, 0.0, 10000.0, "F_p = B_p + scale / N_p * sum(S - P) (eq. 2.3)") \
+  REAL(fitness, fp_min, 0.001, 1e-9, 1.0, "each F_p is clamped to at least this before the harmonic mean (SPEC 7)") \
+  REAL(fitness, fail_penalty, 4.0, 0.0, 100.0, "a trial ended early by failure scores S = 0, P = this for every remaining step") \
+  INT(fitness, reach_hold_steps, 20, 0, 100000, "main-prim reach ends with success this many steps after the reach point was first reached") \
+  REAL(fitness, move_touch, 0.1, 0.0, 1.0, "eq. 2.12: step fitness while touching the object") \
+  REAL(fitness, move_lift, 0.1, 0.0, 1.0, "eq. 2.12: step fitness while the object is lifted") \
+  REAL(fitness, move_lift_dist, 0.8, 0.0, 1.0, "eq. 2.12: weight of exp(-decay d_m) while lifted") \
+  ENUM(stage, stages, 0, "simple_prim|main_prim|prims", "what evolve runs: simple-prim, main-prim, or both in sequence (thesis 2.7-2.8)") \
+  STR(stage, init_population, "", "population file to start from (main_prim); empty: random genotypes") \
+  INT(stage, simple_steps, 60, 1, 100000, "simple-prim trial length, control steps (3 s)") \
+  INT(stage, main_reach_steps, 100, 1, 100000, "main-prim reach trial length (5 s)") \
+  INT(stage, main_open_steps, 60, 1, 100000, "main-prim open trial length (3 s)") \
+  INT(stage, main_grasp_steps, 80, 1, 100000, "main-prim grasp trial length (4 s)") \
+  INT(stage, main_move_steps, 70, 1, 100000, "main-prim move trial length (3.5 s)") \
+  INT(stage, grasp_table_off_step, 40, 0, 100000, "main-prim grasp: object-table collision off after this many steps") \
+  INT(stage, move_table_off_step, 10, 0, 100000, "main-prim move: object-table collision off after this many steps") \
   REAL(postures, reach_clearance, 0.15, 0.0, 2.0, "reach start: palm centre at least this far from every object position, m (SPEC 8)") \
   REAL(postures, open_near_ball_x, 0.02, -0.2, 0.2, "open k=0,1: ball centre ahead of the palm centre along the fingers, m") \
   REAL(postures, open_near_gap, 0.015, -0.1, 0.3, "open k=0,1: palm above the ball top, m (hand around the ball, almost grasping)") \

@@ -29,6 +29,7 @@
 #ifndef SELFTALK_POSTURES_H
 #define SELFTALK_POSTURES_H
 
+#include "selftalk/fitness.h" /* the primitives: ST_PRIM_*, st_primitive_name */
 #include "selftalk/robot.h"
 #include "selftalk/scene.h"
 
@@ -36,12 +37,8 @@
 extern "C" {
 #endif
 
-/* Primitives, in the order of the linguistic inputs (SPEC §4). */
-enum { ST_PRIM_REACH = 0, ST_PRIM_OPEN, ST_PRIM_GRASP, ST_PRIM_MOVE, ST_NPRIM };
 #define ST_NPOSTURE 4 /* postures per primitive (= object positions) */
 
-/* "reach", "open", "grasp", "move"; "?" for anything else. */
-const char *st_primitive_name(int primitive);
 
 /* Initial posture k (0..3) of a primitive (ST_PRIM_*), for object position k of the scene:
  * fills qhat[12] (SPEC §3 order). Fails with ST_ERR_ARG on a bad primitive or k, ST_ERR_RANGE

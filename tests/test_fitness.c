@@ -1,0 +1,246 @@
+/* SPDX-License-Identifier: MIT
+ * Fitness functions and trial scoring against values worked out by hand from thesis
+ * eq. 2.2-2.12 (exp values from a calculator: e^-1 = 0.36787944117144233,
+ * e^-0.5 = 0.6065306597126334, e^-2 = 0.1353352832366127). */
+#include <math.h>
+
+#include "selftalk/trial.h"
+#include "test_util.h"
+
+static stFitnessDef def(void) {
+  stConfig c;
+  st_config_default(&c);
+  stFitnessDef d;
+  st_fitness_def_from_config(&c, &d);
+  return d;
+}
+
+static stQuantities quant(double d_r, double d_g, double d_m, double d_mhat, double h, double p) {
+  stQuantities q;
+  memset(&q, 0, sizeof q);
+  q.d_r = d_r;
+  q.d_g = d_g;
+  q.d_m = d_m;
+  q.d_mhat = d_mhat;
+  q.h = h;
+  q.p = p;
+  return q;
+}
+
+static void test_step_fitness(void) {
+  stFitnessDef d = def();
+  const double E1 = 0.36787944117144233, E05 = 0.6065306597126334, E2 = 0.1353352832366127;
+  /* reach, d_r = 0.1: s = e^-1. Focus right (object, y = 0.2): 0.2 * 0.8 + 0.8 e^-1 */
+  stQuantities q = quant(0.1, 0, 0, 0, 1, 0);
+  CU_ASSERT_DOUBLE_EQUAL(st_step_s(&d, ST_STAGE_SIMPLE, ST_PRIM_REACH, &q), E1, 1e-15);
+  CU_ASSERT_DOUBLE_EQUAL(st_step_fitness(&d, ST_STAGE_SIMPLE, ST_PRIM_REACH, &q, 0.2, 0.5),
+                         0.16 + 0.8 * E1, 1e-15);
+  /* focus wrong (y = 0.7 picks the target): only 0.2 f_f = 0.2 * 0.3 */
+  CU_ASSERT_DOUBLE_EQUAL(st_step_fitness(&d, ST_STAGE_SIMPLE, ST_PRIM_REACH, &q, 0.7, 0.5), 0.06,
+                         1e-15);
+  /* open at its goal: h = 0.7, p = 1, d_r = 0 -> s = 1, S = 0.2 * 1 + 0.8 = 1 */
+  q = quant(0, 0, 0, 0, 0.7, 1);
+  CU_ASSERT_DOUBLE_EQUAL(st_step_fitness(&d, ST_STAGE_MAIN, ST_PRIM_OPEN, &q, 0.0, 0.5), 1.0, 1e-15);
+  /* open, h = 0.35 (half way), p = 0.5, d_r = 0.05: 0.5 ((1 - 0.5) + 0.5) e^-0.5 */
+  q = quant(0.05, 0, 0, 0, 0.35, 0.5);
+  CU_ASSERT_DOUBLE_EQUAL(st_step_s(&d, ST_STAGE_SIMPLE, ST_PRIM_OPEN, &q), 0.5 * E05, 1e-15);
+  /* grasp: h = 0.4, p = 1, d_g = 0 -> 1; h = 1 (open) -> 0.5 (0 + p) e^(-10 d_g) */
+  q = quant(0.3, 0, 0, 0, 0.4, 1);
+  CU_ASSERT_DOUBLE_EQUAL(st_step_s(&d, ST_STAGE_SIMPLE, ST_PRIM_GRASP, &q), 1.0, 1e-15);
+  q = quant(0.3, 0.1, 0, 0, 1.0, 0.5);
+  CU_ASSERT_DOUBLE_EQUAL(st_step_s(&d, ST_STAGE_MAIN, ST_PRIM_GRASP, &q), 0.25 * E1, 1e-15);
+  /* simplified move: palm to target (d_mhat 0.2), not the object (d_m 0.05); the right focus
+   * is the target: y = 0.9 -> 0.2 * 0.9 + 0.8 e^-2 */
+  q = quant(0, 0, 0.05, 0.2, 1, 0);
+  CU_ASSERT_DOUBLE_EQUAL(st_step_fitness(&d, ST_STAGE_SIMPLE, ST_PRIM_MOVE, &q, 0.9, 0.5),
+                         0.18 + 0.8 * E2, 1e-15);
+  CU_ASSERT_DOUBLE_EQUAL(st_step_fitness(&d, ST_STAGE_SIMPLE, ST_PRIM_MOVE, &q, 0.4, 0.5),
+                         0.2 * 0.4, 1e-15);
+  /* main move (eq. 2.12), d_m = 0.1: touching and lifted 0.1 + 0.1 + 0.8 e^-1 */
+  q = quant(0, 0, 0.1, 0.5, 1, 0);
+  q.touching = 1;
+  q.lifted = 1;
+  CU_ASSERT_DOUBLE_EQUAL(st_step_s(&d, ST_STAGE_MAIN, ST_PRIM_MOVE, &q), 0.2 + 0.8 * E1, 1e-15);
+  q.lifted = 0;
+  CU_ASSERT_DOUBLE_EQUAL(st_step_s(&d, ST_STAGE_MAIN, ST_PRIM_MOVE, &q), 0.1, 1e-15);
+  q.touching = 0;
+  CU_ASSERT_DOUBLE_EQUAL(st_step_s(&d, ST_STAGE_MAIN, ST_PRIM_MOVE, &q), 0.0, 0.0);
+}
+
+static void test_success_conditions(void) {
+  stFitnessDef d = def();
+  stQuantities q = quant(0.029, 0.029, 0.059, 0.029, 0.71, 0.91);
+  CU_ASSERT(st_success_now(&d, ST_STAGE_SIMPLE, ST_PRIM_REACH, &q));
+  CU_ASSERT(st_success_now(&d, ST_STAGE_SIMPLE, ST_PRIM_OPEN, &q));
+  CU_ASSERT(!st_success_now(&d, ST_STAGE_SIMPLE, ST_PRIM_GRASP, &q)); /* h 0.71 not < 0.4 */
+  CU_ASSERT(st_success_now(&d, ST_STAGE_SIMPLE, ST_PRIM_MOVE, &q));
+  CU_ASSERT(st_success_now(&d, ST_STAGE_MAIN, ST_PRIM_MOVE, &q)); /* d_m 0.059 < 0.06 */
+  q.h = 0.39;
+  CU_ASSERT(st_success_now(&d, ST_STAGE_SIMPLE, ST_PRIM_GRASP, &q));
+  CU_ASSERT(!st_success_now(&d, ST_STAGE_MAIN, ST_PRIM_GRASP, &q)); /* judged at the end */
+  CU_ASSERT(!st_success_now(&d, ST_STAGE_SIMPLE, ST_PRIM_OPEN, &q)); /* h 0.39 not > 0.7 */
+  q = quant(0.031, 0.031, 0.061, 0.031, 0.5, 0.89);
+  for (int p = 0; p < ST_NPRIM; p++) {
+    CU_ASSERT(!st_success_now(&d, ST_STAGE_SIMPLE, p, &q));
+    CU_ASSERT(!st_success_now(&d, ST_STAGE_MAIN, p, &q));
+  }
+}
+
+static void test_penalty_masks(void) {
+  /* thesis 2.7.2 and 2.8.1.2 */
+  CU_ASSERT_EQUAL(st_penalty_mask(ST_STAGE_SIMPLE, ST_PRIM_REACH, 0, 40), ST_PEN_TABLE | ST_PEN_OBJECT);
+  CU_ASSERT_EQUAL(st_penalty_mask(ST_STAGE_SIMPLE, ST_PRIM_OPEN, 0, 40), ST_PEN_TABLE | ST_PEN_OBJECT);
+  CU_ASSERT_EQUAL(st_penalty_mask(ST_STAGE_SIMPLE, ST_PRIM_GRASP, 0, 40), ST_PEN_TABLE);
+  CU_ASSERT_EQUAL(st_penalty_mask(ST_STAGE_SIMPLE, ST_PRIM_MOVE, 0, 40), ST_PEN_TABLE);
+  CU_ASSERT_EQUAL(st_penalty_mask(ST_STAGE_MAIN, ST_PRIM_REACH, 0, 40),
+                  ST_PEN_TABLE | ST_PEN_OBJECT | ST_PEN_MOVING);
+  CU_ASSERT_EQUAL(st_penalty_mask(ST_STAGE_MAIN, ST_PRIM_GRASP, 39, 40), ST_PEN_TABLE | ST_PEN_MOVING);
+  CU_ASSERT_EQUAL(st_penalty_mask(ST_STAGE_MAIN, ST_PRIM_GRASP, 40, 40), ST_PEN_TABLE);
+  CU_ASSERT_EQUAL(st_penalty_mask(ST_STAGE_MAIN, ST_PRIM_MOVE, 0, 40), ST_PEN_TABLE);
+}
+
+static void test_fp_and_harmonic(void) {
+  stFitnessDef d = def();
+  /* eq. 2.3: 2 successes (20) + 100 / 240 * 30 = 32.5 */
+  CU_ASSERT_DOUBLE_EQUAL(st_primitive_fitness(&d, 20, 30, 240), 32.5, 1e-12);
+  /* maximum: 40 + 100 = 140 */
+  CU_ASSERT_DOUBLE_EQUAL(st_primitive_fitness(&d, 40, 240, 240), 140, 1e-12);
+  double same[4] = {40, 40, 40, 40}, mixed[4] = {10, 20, 40, 80}, neg[4] = {100, 50, 25, -3};
+  CU_ASSERT_DOUBLE_EQUAL(st_harmonic_fitness(&d, same, 4), 40.0, 1e-12);
+  /* 4 / (0.1 + 0.05 + 0.025 + 0.0125) = 4 / 0.1875 */
+  CU_ASSERT_DOUBLE_EQUAL(st_harmonic_fitness(&d, mixed, 4), 4.0 / 0.1875, 1e-12);
+  /* F_p <= 0 is clamped to 0.001: 4 / (0.01 + 0.02 + 0.04 + 1000) */
+  CU_ASSERT_DOUBLE_EQUAL(st_harmonic_fitness(&d, neg, 4), 4.0 / 1000.07, 1e-12);
+}
+
+static stTrialSpec spec(stStage stage, int prim, int steps, int off) {
+  stTrialSpec t;
+  memset(&t, 0, sizeof t);
+  t.stage = stage;
+  t.primitive = prim;
+  t.steps = steps;
+  t.table_off_step = off;
+  return t;
+}
+
+/* simplified reach over 5 steps, success at step 2; focus right throughout */
+static void test_score_success_mid_trial(void) {
+  stFitnessDef d = def();
+  stTrialSpec t = spec(ST_STAGE_SIMPLE, ST_PRIM_REACH, 5, -1);
+  stTrialScore sc;
+  st_score_begin(&sc, &t);
+  const double dr[5] = {0.1, 0.05, 0.02, 0.05, 0.1};
+  double want = 0;
+  for (int s = 0; s < 5; s++) {
+    stQuantities q = quant(dr[s], 0, 0, 0, 1, 0);
+    CU_ASSERT_EQUAL(st_score_step(&sc, &d, s, &q, 0.2, 0.5, s == 3 ? 1.0 : 0.0, 0, 0, NULL, NULL), -1);
+    want += 0.16 + 0.8 * exp(-10 * dr[s]);
+  }
+  stTrialResult r;
+  st_score_end(&sc, &d, 0, 0, &r);
+  CU_ASSERT_EQUAL(r.success, 1);
+  CU_ASSERT_EQUAL(r.success_step, 2);
+  CU_ASSERT_EQUAL(r.end, ST_END_FULL);
+  CU_ASSERT_DOUBLE_EQUAL(r.sum_s, want, 1e-12);
+  CU_ASSERT_DOUBLE_EQUAL(r.sum_p, 1.0, 0.0);
+  CU_ASSERT_EQUAL(r.steps, 5);
+}
+
+/* main-prim reach reached at step 1 and held: ends after step 22 ("more than 20 steps ago"),
+ * the 7 remaining steps of 30 score S = 1 each */
+static void test_score_reach_hold(void) {
+  stFitnessDef d = def();
+  stTrialSpec t = spec(ST_STAGE_MAIN, ST_PRIM_REACH, 30, -1);
+  stTrialScore sc;
+  st_score_begin(&sc, &t);
+  int ended = -1, s = 0;
+  double S, sum = 0;
+  for (; s < 30 && ended < 0; s++) {
+    stQuantities q = quant(s == 0 ? 0.2 : 0.02, 0, 0, 0, 1, 0);
+    ended = st_score_step(&sc, &d, s, &q, 0.0, 0.5, 0, 0, 0, &S, NULL);
+    sum += S;
+  }
+  CU_ASSERT_EQUAL(ended, ST_END_SUCCESS);
+  CU_ASSERT_EQUAL(s, 23);
+  stTrialResult r;
+  st_score_end(&sc, &d, 0, 0, &r);
+  CU_ASSERT_EQUAL(r.success, 1);
+  CU_ASSERT_EQUAL(r.steps_run, 23);
+  CU_ASSERT_DOUBLE_EQUAL(r.sum_s, sum + 7.0, 1e-12);
+  CU_ASSERT_EQUAL(r.steps, 30);
+}
+
+/* main-prim open: the object falls at step 3 of 10: P = 4 for the 6 steps left */
+static void test_score_early_failure(void) {
+  stFitnessDef d = def();
+  stTrialSpec t = spec(ST_STAGE_MAIN, ST_PRIM_OPEN, 10, -1);
+  stTrialScore sc;
+  st_score_begin(&sc, &t);
+  stQuantities q = quant(0.2, 0, 0, 0, 1, 0);
+  for (int s = 0; s < 3; s++) CU_ASSERT_EQUAL(st_score_step(&sc, &d, s, &q, 0, 0.5, 0.5, 0, 0, NULL, NULL), -1);
+  CU_ASSERT_EQUAL(st_score_step(&sc, &d, 3, &q, 0, 0.5, 0.5, 1, 0, NULL, NULL), ST_END_FAILURE);
+  stTrialResult r;
+  st_score_end(&sc, &d, -0.2, -0.08, &r);
+  CU_ASSERT_DOUBLE_EQUAL(r.sum_p, 4 * 0.5 + 6 * 4.0, 1e-12);
+  CU_ASSERT_EQUAL(r.success, 0);
+  CU_ASSERT_EQUAL(r.end, ST_END_FAILURE);
+}
+
+/* main-prim grasp: a fall after the table is removed ends quietly (nothing added), before it
+ * it is a failure; success needs the object above the table at the end */
+static void test_score_grasp(void) {
+  stFitnessDef d = def();
+  stTrialSpec t = spec(ST_STAGE_MAIN, ST_PRIM_GRASP, 80, 40);
+  stTrialScore sc;
+  stTrialResult r;
+  stQuantities q = quant(0.2, 0.02, 0, 0, 0.3, 1);
+  st_score_begin(&sc, &t);
+  for (int s = 0; s < 45; s++) CU_ASSERT_EQUAL(st_score_step(&sc, &d, s, &q, 0, 0.5, 0, 0, 0, NULL, NULL), -1);
+  CU_ASSERT_EQUAL(st_score_step(&sc, &d, 45, &q, 0, 0.5, 0, 1, 0, NULL, NULL), ST_END_QUIET);
+  double s_before = sc.r.sum_s;
+  st_score_end(&sc, &d, -0.3, -0.08, &r);
+  CU_ASSERT_DOUBLE_EQUAL(r.sum_s, s_before, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(r.sum_p, 0.0, 0.0);
+  CU_ASSERT_EQUAL(r.success, 0);
+  st_score_begin(&sc, &t);
+  CU_ASSERT_EQUAL(st_score_step(&sc, &d, 0, &q, 0, 0.5, 0, 1, 0, NULL, NULL), ST_END_FAILURE);
+  st_score_end(&sc, &d, -0.3, -0.08, &r);
+  CU_ASSERT_DOUBLE_EQUAL(r.sum_p, 79 * 4.0, 1e-12);
+  st_score_begin(&sc, &t);
+  for (int s = 0; s < 80; s++) st_score_step(&sc, &d, s, &q, 0, 0.5, 0, 0, 0, NULL, NULL);
+  st_score_end(&sc, &d, -0.05, -0.08, &r);
+  CU_ASSERT_EQUAL(r.success, 1); /* centre 3 cm above the table top at the end */
+  CU_ASSERT_EQUAL(r.end, ST_END_FULL);
+}
+
+/* main-prim move: in the target at step 2, success only if still lifted at the end */
+static void test_score_move(void) {
+  stFitnessDef d = def();
+  stTrialSpec t = spec(ST_STAGE_MAIN, ST_PRIM_MOVE, 6, 2);
+  for (int lifted_end = 0; lifted_end < 2; lifted_end++) {
+    stTrialScore sc;
+    st_score_begin(&sc, &t);
+    for (int s = 0; s < 6; s++) {
+      stQuantities q = quant(0, 0, s == 2 ? 0.05 : 0.2, 0, 0.3, 1);
+      q.lifted = s < 5 || lifted_end;
+      st_score_step(&sc, &d, s, &q, 0.9, 0.5, 0, 0, 0, NULL, NULL);
+    }
+    stTrialResult r;
+    st_score_end(&sc, &d, 0, 0, &r);
+    CU_ASSERT_EQUAL(r.success, lifted_end);
+    CU_ASSERT_EQUAL(r.success_step, 2);
+  }
+}
+
+void st_suite_fitness(void) {
+  ST_ADD_SUITE("fitness");
+  ST_ADD_TEST(test_step_fitness);
+  ST_ADD_TEST(test_success_conditions);
+  ST_ADD_TEST(test_penalty_masks);
+  ST_ADD_TEST(test_fp_and_harmonic);
+  ST_ADD_TEST(test_score_success_mid_trial);
+  ST_ADD_TEST(test_score_reach_hold);
+  ST_ADD_TEST(test_score_early_failure);
+  ST_ADD_TEST(test_score_grasp);
+  ST_ADD_TEST(test_score_move);
+}
