@@ -106,7 +106,7 @@ $(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FU
 
 run: deps all
 	@if [ -x $(APPDIR)/evolve ]; then \
-	  ./$(APPDIR)/evolve configs/simple_prim.cfg --out runs/simple_prim; \
+	  ./$(APPDIR)/evolve configs/simple_prim.cfg; \
 	else \
 	  echo "make run: apps/evolve does not exist yet (the primitive stages are still to come)."; \
 	  echo "make run: running the best demo there is instead: docs/example_net.c, the network"; \
