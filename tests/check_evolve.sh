@@ -28,6 +28,30 @@ else
 fi
 if same_files "$tmp/t1" "$tmp/t2"; then ok "1 thread and 2 threads give bit-identical files"; else ko "thread independence"; fi
 
+# replay: the best of the last generation, replayed trial by trial with the run's config and
+# that generation's offsets, reproduces its successes and (summing each trial's share) its fitness
+last=$((G - 1))
+for k in $(seq 0 15); do
+  "$APPDIR/replay" "$tmp/t1/population.genome" "$tmp/t1/config.ini" --trial $k --generation $last \
+    --out "$tmp/trace$k.csv"
+done > "$tmp/replay.txt" 2>&1
+if python3 - "$tmp/replay.txt" "$tmp/t1/fitness.csv" "$tmp/trace15.csv" <<'PY'
+import csv, re, sys
+fp, succ = [0.0] * 4, []
+for line in open(sys.argv[1]):
+    k = int(line.split()[1])
+    fp[k // 4] += float(re.search(r"F_contribution=(\S+)", line).group(1))
+    succ.append(int(re.search(r"success=(\d)", line).group(1)))
+F = 4 / sum(1 / max(x, 0.001) for x in fp)
+row = list(csv.DictReader(open(sys.argv[2])))[-1]
+want = [int(row["best_t%d" % t]) for t in range(16)]
+trace = list(csv.DictReader(open(sys.argv[3])))
+ok = succ == want and abs(F - float(row["best"])) < 1e-4 and len(trace) == 60 and "palm_x" in trace[0]
+print("replay F %.6f vs csv %.6f, successes %s vs %s, trace rows %d" % (F, float(row["best"]), succ, want, len(trace)))
+sys.exit(0 if ok else 1)
+PY
+then ok "replay reproduces the best's 16 trials and fitness"; else ko "replay" "$(tail -3 "$tmp/replay.txt")"; fi
+
 # SIGKILL at several moments, resume each time; the end must equal the uninterrupted run
 for delay in 0.05 0.3 0.45; do
   rm -rf "$tmp/k"

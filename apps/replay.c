@@ -1,0 +1,120 @@
+/* SPDX-License-Identifier: MIT
+ * replay: runs one trial of a saved genotype and writes its per-step trace (SPEC §9).
+ *
+ *   replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] [--generation G]
+ *          [--index I] [--set section.key=value]...
+ *
+ * K = 0..15 (primitive K/4: reach, open, grasp, move; posture and object position K%4).
+ * --generation picks the trials' random offsets (default 0); --index the genotype of GENOME
+ * (default 0, the first: the best in population.genome). Prints a one-line summary. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app_common.h"
+#include "selftalk/trial.h"
+
+static const char *prog = "replay";
+
+typedef struct traceCtx {
+  FILE *f;
+  const stProtocol *p;
+  const stTrialSpec *t;
+} traceCtx;
+
+static void header(FILE *f) {
+  fprintf(f, "step");
+  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",q%d", d);
+  fprintf(f, ",palm_x,palm_y,palm_z,obj_x,obj_y,obj_z,target_x,target_y,target_z");
+  for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",touch%d", i);
+  fprintf(f, ",focus_out,focus_target,ling_reach,ling_open,ling_grasp,ling_move,S,P,success_now,"
+             "event,d_r,d_g,d_m,d_mhat,h,p,touching,lifted\n");
+}
+
+static void on_step(void *ctx, const stTraceStep *s) {
+  traceCtx *c = ctx;
+  FILE *f = c->f;
+  const stWorld *w = s->world;
+  const stQuantities *q = s->q;
+  fprintf(f, "%d", s->step);
+  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",%.9g", w->qhat[d]);
+  fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", q->palm[0], q->palm[1], q->palm[2],
+          w->obj[0], w->obj[1], w->obj[2], w->target[0], w->target[1], w->target[2]);
+  for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",%d", w->contacts.touch[i]);
+  fprintf(f, ",%.9g,%d", s->out[ST_NET_OUT_FOCUS], s->focus_target);
+  for (int m = 0; m < ST_NET_NLING; m++) fprintf(f, ",%g", s->in[ST_NET_IN_LING + m]);
+  fprintf(f, ",%.9g,%.9g,%d,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d\n", s->S, s->P, s->success_now,
+          s->event == ST_END_SUCCESS ? "end_success" : s->event == ST_END_FAILURE ? "end_failure"
+          : s->event == ST_END_QUIET ? "end_quiet" : "", q->d_r, q->d_g, q->d_m, q->d_mhat, q->h,
+          q->p, q->touching, q->lifted);
+}
+
+int main(int argc, char **argv) {
+  appConfigArgs ca;
+  memset(&ca, 0, sizeof ca);
+  const char *genome = NULL, *out = NULL, *stage_name = NULL;
+  int trial = -1, generation = 0, index = 0;
+  for (int i = 1; i < argc; i++) {
+    if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
+    const char *a = argv[i];
+    if (!strcmp(a, "--trial") && i + 1 < argc) trial = atoi(argv[++i]);
+    else if (!strcmp(a, "--out") && i + 1 < argc) out = argv[++i];
+    else if (!strcmp(a, "--stage") && i + 1 < argc) stage_name = argv[++i];
+    else if (!strcmp(a, "--generation") && i + 1 < argc) generation = atoi(argv[++i]);
+    else if (!strcmp(a, "--index") && i + 1 < argc) index = atoi(argv[++i]);
+    else if (a[0] == '-' && a[1]) app_die(prog, "unknown or incomplete option '%s'", a);
+    else if (!genome) genome = a;
+    else if (!ca.config_path) ca.config_path = a;
+    else app_die(prog, "unexpected argument '%s'", a);
+  }
+  if (!genome || !ca.config_path)
+    app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] "
+                  "[--generation G] [--index I]");
+  if (trial < 0 || trial >= ST_PRIM_TRIALS) app_die(prog, "--trial: expected 0..%d", ST_PRIM_TRIALS - 1);
+  stConfig cfg;
+  app_config_resolve(&ca, &cfg, prog);
+  stStage stage = cfg.stage_stages == 1 ? ST_STAGE_MAIN : ST_STAGE_SIMPLE;
+  if (stage_name) {
+    if (!strcmp(stage_name, "simple")) stage = ST_STAGE_SIMPLE;
+    else if (!strcmp(stage_name, "main")) stage = ST_STAGE_MAIN;
+    else app_die(prog, "--stage '%s': expected simple or main", stage_name);
+  }
+  char err[1024];
+  stGenomeSet set;
+  if (st_genome_set_read(genome, ST_GENES_BASE, &set, err, sizeof err)) app_die(prog, "%s", err);
+  if (index < 0 || index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
+  stProtocol *p = NULL;
+  if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
+  stNetParams np;
+  if (st_net_decode(&p->net, ST_ARCH_BASE, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
+  st_genome_set_free(&set);
+
+  stTrialSpec t;
+  st_trial_spec(p, stage, generation, trial, &t);
+  FILE *f = NULL;
+  if (out && !(f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
+  if (f) header(f);
+  traceCtx ctx = {f, p, &t};
+  stWorkspace ws = {NULL, NULL};
+  stTrialResult r;
+  uint64_t key = st_rng_keyed((uint64_t)cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
+                              (uint64_t)index, (uint64_t)trial).key;
+  if (st_trial_run(p, &ws, &t, &np, key, &r, f ? on_step : NULL, &ctx, err, sizeof err)) app_die(prog, "%s", err);
+  if (f && fclose(f) != 0) app_die(prog, "%s: write error", out);
+  /* this trial's share of F_p: the primitive's N_p spans its four trials */
+  long n_p = 0;
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    stTrialSpec o;
+    st_trial_spec(p, stage, generation, t.primitive * ST_NPOSTURE + k, &o);
+    n_p += o.steps;
+  }
+  double share = (r.success ? p->fitness.bonus : 0.0) + p->fitness.scale / (double)n_p * (r.sum_s - r.sum_p);
+  static const char *ends[] = {"full", "success", "failure", "quiet"};
+  printf("trial %d %s %s k=%d success=%d steps=%ld/%d end=%s first_success_step=%d sum_S=%.6f "
+         "sum_P=%.6f F_contribution=%.6f\n",
+         trial, st_stage_name(stage), st_primitive_name(t.primitive), t.k, r.success, r.steps_run,
+         t.steps, ends[r.end], r.success_step, r.sum_s, r.sum_p, share);
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+  return 0;
+}
