@@ -1,0 +1,58 @@
+#!/usr/bin/env python3
+"""Summarises evolution runs: for each run directory (an `evolve --out DIR`), the generation at
+which each stage was completed (5 genotypes solving all 16 trials), the generations run, and
+the final best individual's successes per trial. Prints CSV (one row per run), then the median
+and quartiles of the completion generations, the thesis's summary statistics (§3.1).
+
+    python3 tools/runs_summary.py runs/simple_prim-s1 runs/simple_prim-s2 ...
+"""
+import csv
+import statistics
+import sys
+
+
+def summarise(run_dir):
+    rows = list(csv.DictReader(open(run_dir + "/fitness.csv")))
+    done = {}
+    for r in rows:
+        if int(r["all_success"]) >= 5 and r["stage"] not in done:
+            done[r["stage"]] = int(r["generation"])
+    last = rows[-1]
+    trials = "".join(last["best_t%d" % t] for t in range(16))
+    return {
+        "run": run_dir,
+        "generations": int(last["generation"]) + 1,
+        "simple_prim_done": done.get("simple-prim", ""),
+        "main_prim_done": done.get("main-prim", ""),
+        "final_stage": last["stage"],
+        "final_best": last["best"],
+        "final_best_successes": last["best_successes"],
+        "final_best_trials": trials,
+    }
+
+
+def quartiles(xs):
+    if len(xs) < 2:
+        return xs[0], xs[0], xs[0]
+    q = statistics.quantiles(xs, n=4, method="inclusive")
+    return q[0], statistics.median(xs), q[2]
+
+
+def main(argv):
+    if len(argv) < 2:
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    out = [summarise(d) for d in argv[1:]]
+    w = csv.DictWriter(sys.stdout, fieldnames=list(out[0].keys()))
+    w.writeheader()
+    w.writerows(out)
+    for stage in ("simple_prim_done", "main_prim_done"):
+        xs = [r[stage] for r in out if r[stage] != ""]
+        if xs:
+            lo, med, hi = quartiles(xs)
+            print("# %s: %d of %d runs, median %g (quartiles %g, %g)" % (stage, len(xs), len(out), med, lo, hi))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
