@@ -104,6 +104,8 @@ extern "C" {
   INT(stage, main_move_steps, 70, 1, 100000, "main-prim move trial length (3.5 s)") \
   INT(stage, grasp_table_off_step, 40, 0, 100000, "main-prim grasp: object-table collision off after this many steps") \
   INT(stage, move_table_off_step, 10, 0, 100000, "main-prim move: object-table collision off after this many steps") \
+  INT(caretaker, grasp_touches, 3, 1, 6, "the caretaker considers a grasp done when this many touch sensors touch the object (thesis 2.9.3)") \
+  INT(caretaker, first_step, 1, 0, 100000, "first step at which the caretaker speaks (never at step 0, thesis 2.9.3)") \
   REAL(postures, reach_clearance, 0.15, 0.0, 2.0, "reach start: palm centre at least this far from every object position, m (SPEC 8)") \
   REAL(postures, open_near_ball_x, 0.02, -0.2, 0.2, "open k=0,1: ball centre ahead of the palm centre along the fingers, m") \
   REAL(postures, open_near_gap, 0.015, -0.1, 0.3, "open k=0,1: palm above the ball top, m (hand around the ball, almost grasping)") \
