@@ -22,20 +22,25 @@
  * position (only the arm differs). */
 
 #define PD (s->posture) /* the postures.* keys of the scene in scope */
+#define REACH_SUCCESS_DIST 0.03 /* fitness.success_dist: the reach-time check's "reached" */
+static double dist3(const double *a, const double *b);
 
 /* reach: start postures (degrees, SPEC §3 order, torso at 0) and the palm-centre target as an
  * offset from the centre of the four object positions; position only, torso fixed at 0 */
 static const double REACH_START_DEG[ST_NPOSTURE][9] = {
-    {0, 0, -30, 20, 0, 90, 0, 0, 0},     /* hand raised in front, palm facing right */
-    {0, 0, 0, 100, 0, 40, 0, 0, 0},      /* arm out to the left, palm down */
-    {0, 0, -50, 10, 60, 100, 80, -20, 0}, /* hand across to the right */
-    {0, 0, -80, 40, 60, 60, 60, -40, 0}, /* hand high over the table, palm facing forward */
+    {0, 0, -30, 20, 0, 90, 0, 0, 0},      /* hand raised in front */
+    {0, 0, -10, 80, 0, 30, 0, 0, 0},      /* arm out to the side, elbow almost straight */
+    {0, 0, -20, 60, 0, 60, 0, 0, 0},      /* arm half raised to the side */
+    {0, 0, -60, 30, 40, 80, 40, -30, 0},  /* hand across in front, wrist turned */
 };
+/* chosen so that every reach start is >= 0.18 m from every object position (0.15 + the 2 cm
+ * offsets) and a full-speed controller reaches its object position within 40 steps (see
+ * st_posture_reach_steps; the first choice here needed 70 steps for P1 and stalled evolution) */
 static const double REACH_PALM_OFFSET[ST_NPOSTURE][3] = {
-    {-0.03, 0.04, 0.19},
-    {-0.10, 0.27, 0.29},
-    {-0.11, -0.16, 0.23},
-    {0.00, 0.00, 0.305},
+    {-0.08, -0.16, 0.18}, /* palm (0.22, -0.06, 0.135): right of the objects */
+    {-0.08, 0.04, 0.18},  /* palm (0.22, 0.14, 0.135): middle left */
+    {-0.12, -0.12, 0.18}, /* palm (0.18, -0.02, 0.135): near the body */
+    {-0.04, -0.04, 0.26}, /* palm (0.26, 0.06, 0.215): high in the middle */
 };
 #define REACH_THUMB_OPPOSE 0.0 /* flat hand: thumb in the palm plane */
 #define REACH_DISTINCT 0.10    /* two reach postures differ by >= this in some arm DOF qhat */
@@ -248,6 +253,33 @@ static double dist3(const double *a, const double *b) {
 }
 
 /* the properties that need the world; returns 1 / 0 with why */
+int st_posture_reach_steps(const stRobot *r, const stScene *s, int k, const double qhat[ST_NDOF],
+                           int max_steps) {
+  double goal[3] = {s->obj_pos[k][0], s->obj_pos[k][1], s->obj_pos[k][2] + PD.reach_height};
+  double q[ST_NDOF];
+  memcpy(q, qhat, sizeof q);
+  stIkDef def = st_ik_default_def();
+  stIkTarget t = st_ik_target(r->palm_body, goal);
+  stIkResult res;
+  if (st_ik_solve(r, &def, &t, q, &res) != ST_OK) return -1;
+  stWorld *w = NULL;
+  if (st_world_create(r, s, &w, NULL, 0)) return -1;
+  st_world_reset(w, qhat, s->obj_pos[k], s->target[0]);
+  int reached = -1;
+  for (int step = 0; step < max_steps && reached < 0; step++) {
+    double y[ST_NDOF];
+    for (int d = 0; d < ST_NDOF; d++) {
+      double e = q[d] - w->qhat[d];
+      y[d] = fabs(e) < 0.02 ? q[d] : e > 0 ? 1.0 : 0.0;
+    }
+    st_world_step_kinematic(w, y);
+    const double *pc = w->p[r->palm_body];
+    if (dist3(pc, goal) < REACH_SUCCESS_DIST) reached = step + 1;
+  }
+  st_world_destroy(w);
+  return reached;
+}
+
 static int check_world(const stRobot *r, const stScene *s, const stWorld *w, int prim, int k,
                        const double q[ST_NDOF], char *why, size_t n) {
   const stContacts *c = &w->contacts;
@@ -283,6 +315,10 @@ static int check_world(const stRobot *r, const stScene *s, const stWorld *w, int
                PD.reach_clearance);
       }
       if (c->robot_object) FAIL("the hand touches the object");
+      int steps = st_posture_reach_steps(r, s, k, w->qhat, 4 * PD.reach_max_steps);
+      if (steps < 0 || steps > PD.reach_max_steps)
+        FAIL("a full-speed IK controller needs %d steps to reach (expected <= %d)", steps,
+             PD.reach_max_steps);
       return 1;
     }
     case ST_PRIM_OPEN: {

@@ -50,6 +50,8 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
   s->posture.move_oppose = c->postures_move_oppose;
   s->posture.move_squeeze = c->postures_move_squeeze;
   s->posture.move_min_fingers = c->postures_move_min_fingers;
+  s->posture.reach_max_steps = c->postures_reach_max_steps;
+  s->posture.reach_height = c->fitness_reach_height;
 }
 
 void st_scene_object(const stScene *s, int k, int with_offset, stRng *rng, double pos[3]) {

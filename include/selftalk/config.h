@@ -107,6 +107,7 @@ extern "C" {
   INT(caretaker, grasp_touches, 3, 1, 6, "the caretaker considers a grasp done when this many touch sensors touch the object (thesis 2.9.3)") \
   INT(caretaker, first_step, 1, 0, 100000, "first step at which the caretaker speaks (never at step 0, thesis 2.9.3)") \
   REAL(postures, reach_clearance, 0.15, 0.0, 2.0, "reach start: palm centre at least this far from every object position, m (SPEC 8)") \
+  INT(postures, reach_max_steps, 40, 1, 100000, "reach start: a bang-bang IK controller in kinematic mode reaches the reach point within this many steps (2 s of the 3 s trial: thesis 2.7, enough time from every start) ") \
   REAL(postures, open_near_ball_x, 0.02, -0.2, 0.2, "open k=0,1: ball centre ahead of the palm centre along the fingers, m") \
   REAL(postures, open_near_gap, 0.015, -0.1, 0.3, "open k=0,1: palm above the ball top, m (hand around the ball, almost grasping)") \
   REAL(postures, open_near_oppose, 0.5, 0.0, 1.0, "open k=0,1: thumb opposition, normalised") \

@@ -52,6 +52,14 @@ stStatus st_posture(const stRobot *robot, const stScene *scene, int primitive, i
 stStatus st_postures_all(const stRobot *robot, const stScene *scene,
                          double qhat[ST_NPRIM][ST_NPOSTURE][ST_NDOF], char *err, size_t errsz);
 
+/* Steps a bang-bang controller needs, in kinematic mode, to bring the palm centre from qhat
+ * to within fitness.success_dist (0.03 m) of the reach point above object position k: each
+ * DOF is driven at full speed towards an inverse-kinematics solution of the reach point, and
+ * held once within 0.02 of it. A lower bound on what an evolved controller needs; -1 when not
+ * reached within max_steps. */
+int st_posture_reach_steps(const stRobot *robot, const stScene *scene, int k,
+                           const double qhat[ST_NDOF], int max_steps);
+
 /* 1 when qhat has the SPEC §8 properties of posture k of a primitive (object at scene
  * position k), else 0 with the first failed property in why (nullable). Reach postures are
  * also checked to be distinct from the other three reach postures st_posture computes. */

@@ -35,6 +35,8 @@ typedef struct stPostureDef {
   double move_oppose;
   double move_squeeze;
   int move_min_fingers;
+  int reach_max_steps;
+  double reach_height; /* fitness.reach_height: the reach point above the object centre */
 } stPostureDef;
 
 typedef struct stScene {
