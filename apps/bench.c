@@ -1,12 +1,18 @@
 /* SPDX-License-Identifier: MIT
  * bench: speed of the simulation with a network in the loop.
  *
- *   bench [--mode kinematic] [--threads N] [--reps R] [--trials T] [--no-baseline]
- *         [--config FILE] [--set k=v]
+ *   bench [--mode kinematic|dynamic] [--threads N] [--reps R] [--trials T] [--no-baseline]
+ *         [--baseline section.key=value] [--config FILE] [--set k=v]
  *
  * Runs T trials of 60 control steps (50 ms each) per repetition, random genotypes, one world
  * per thread, and prints the median over R repetitions:
- *   mode=kinematic steps_per_s=... per_core=... threads=... */
+ *   mode=kinematic steps_per_s=... per_core=... threads=...
+ *   mode=dynamic steps_per_s=... per_core=... threads=... bodies=... substep=... iterations=...
+ * Kinematic trials start from a reach-like posture; dynamic ones cycle through the 16 initial
+ * postures of the primitives (SPEC §8) with their object positions, the object-table collision
+ * off after 40 (grasp) or 10 (move) steps as in main-prim trials. The same-run baseline is, in
+ * kinematic mode, the brute-force contact detection; in dynamic mode the same trials with
+ * dynamics.substep=0.005 (or the --baseline override). */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -16,6 +22,7 @@
 
 #include "app_common.h"
 #include "selftalk/net.h"
+#include "selftalk/postures.h"
 #include "selftalk/sensors.h"
 
 static const char *prog = "bench";
@@ -51,11 +58,129 @@ static double kin_trial(stWorld *w, const stSensorDef *sd, const stNetParams *np
   return sum;
 }
 
+/* one dynamic trial: posture, object position and word of a primitive */
+static double dyn_trial(stWorld *w, const stSensorDef *sd, const stNetParams *np, const double *q0,
+                        int prim, const double *obj, const double *target, int steps, uint64_t seed) {
+  stNetState ns;
+  st_net_reset(np, &ns);
+  st_world_set_seed(w, seed);
+  st_world_reset(w, q0, obj, target);
+  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT], ling[4] = {0, 0, 0, 0}, sum = 0;
+  ling[prim] = 10;
+  const int off = prim == ST_PRIM_GRASP ? 40 : prim == ST_PRIM_MOVE ? 10 : -1;
+  int focus_target = 0;
+  for (int t = 0; t < steps && !st_world_unstable(w); t++) {
+    if (t == off) st_world_set_object_table_collision(w, 0);
+    stQuantities q;
+    st_quantities(w, sd, &q);
+    st_sensor_inputs(w, sd, &q, focus_target, t == 0, ling, 0, in, ST_NET_NIN);
+    st_net_step(np, &ns, in, out);
+    focus_target = st_focus_is_target(sd, out[ST_NET_OUT_FOCUS]);
+    st_world_step_dynamic(w, out);
+    sum += q.d_r + w->contacts.arm_table + w->obj[2];
+  }
+  return sum;
+}
+
+typedef struct dynStats {
+  long substeps, ode_substeps, unstable;
+} dynStats;
+
+/* T dynamic trials on the given threads; returns the elapsed time, fills per_trial */
+static double dyn_run(const stRobot *robot, const stScene *scene, const stDynDef *def,
+                      const stSensorDef *sd, const stNetParams *np, int ngenome,
+                      double (*q0)[ST_NPOSTURE][ST_NDOF], int trials, int steps, int threads,
+                      double *per_trial, dynStats *stats, stDynInfo *info) {
+  double t0 = now();
+  long sub = 0, ode = 0, unst = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : sub, ode, unst)
+  {
+    stWorld *w = NULL;
+    char e[256];
+    if (st_world_create_dynamic(robot, scene, def, &w, e, sizeof e) == ST_OK) {
+#pragma omp single
+      st_world_dynamic_info(w, info);
+#pragma omp for schedule(dynamic, 4)
+      for (int t = 0; t < trials; t++) {
+        const int prim = t % ST_NPRIM, k = (t / ST_NPRIM) % ST_NPOSTURE;
+        per_trial[t] = dyn_trial(w, sd, &np[t % ngenome], q0[prim][k], prim, scene->obj_pos[k],
+                                 scene->target[k % 2], steps, (uint64_t)t);
+        stDynInfo in;
+        st_world_dynamic_info(w, &in);
+        sub += (long)in.substeps * w->step;
+        ode += in.dyn_substeps;
+        unst += st_world_unstable(w);
+      }
+      st_world_destroy(w);
+    } else {
+#pragma omp critical
+      fprintf(stderr, "%s: %s\n", prog, e);
+    }
+  }
+  stats->substeps += sub;
+  stats->ode_substeps += ode;
+  stats->unstable += unst;
+  return now() - t0;
+}
+
+static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int baseline, int threads,
+                         int reps, int trials, const stNetParams *np, int ngenome) {
+  char err[1024];
+  stRobot *robot = NULL;
+  if (st_robot_create(cfg, &robot, err, sizeof err)) app_die(prog, "%s", err);
+  stScene scene;
+  st_scene_from_config(cfg, &scene);
+  stSensorDef sd;
+  st_sensor_def_from_config(cfg, &sd);
+  static double q0[ST_NPRIM][ST_NPOSTURE][ST_NDOF];
+  if (st_postures_all(robot, &scene, q0, err, sizeof err)) app_die(prog, "%s", err);
+  stDynDef def, base_def;
+  st_dyn_def_from_config(cfg, &def);
+  stConfig bcfg = *cfg;
+  if (st_config_set(&bcfg, baseline_set, err, sizeof err)) app_die(prog, "--baseline: %s", err);
+  st_dyn_def_from_config(&bcfg, &base_def);
+  const int steps = 60;
+  double *rate = malloc(sizeof *rate * (size_t)reps), *base = malloc(sizeof *base * (size_t)reps);
+  double *per_trial = malloc(sizeof *per_trial * (size_t)trials);
+  dynStats st = {0, 0, 0}, bst = {0, 0, 0};
+  stDynInfo info, binfo;
+  memset(&info, 0, sizeof info);
+  memset(&binfo, 0, sizeof binfo);
+  for (int rr = 0; rr < 2 * reps; rr++) {
+    const int is_base = rr % 2, r = rr / 2; /* interleaved so drifts hit both alike */
+    if (is_base && !baseline) continue;
+    double dt = dyn_run(robot, &scene, is_base ? &base_def : &def, &sd, np, ngenome, q0, trials,
+                        steps, threads, per_trial, is_base ? &bst : &st, is_base ? &binfo : &info);
+    (is_base ? base : rate)[r] = (double)trials * steps / dt;
+  }
+  qsort(rate, (size_t)reps, sizeof *rate, cmp_double);
+  qsort(base, (size_t)reps, sizeof *base, cmp_double);
+  const double med = rate[reps / 2], med_base = base[reps / 2];
+  printf("mode=dynamic steps_per_s=%.0f per_core=%.0f threads=%d bodies=%d substep=%g "
+         "iterations=%d solver=%s reps=%d trials=%d steps_per_trial=%d robot_in_ode=%.0f%% "
+         "unstable=%ld\n",
+         med, med / threads, threads, info.bodies, def.substep, def.iterations,
+         st_config_enum_name("dynamics", "solver", info.solver), reps, trials, steps,
+         st.substeps ? 100.0 * (double)st.ode_substeps / (double)st.substeps : 0.0, st.unstable);
+  if (baseline)
+    printf("baseline=%s steps_per_s=%.0f per_core=%.0f speedup=%.2f robot_in_ode=%.0f%% "
+           "unstable=%ld\n",
+           baseline_set, med_base, med_base / threads, med / med_base,
+           bst.substeps ? 100.0 * (double)bst.ode_substeps / (double)bst.substeps : 0.0,
+           bst.unstable);
+  free(rate);
+  free(base);
+  free(per_trial);
+  st_robot_destroy(robot);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *mode = "kinematic";
-  int threads = 0, reps = 5, trials = 2000, baseline = 1;
+  int threads = 0, reps = 5, trials = 0, baseline = 1;
+  const char *baseline_set = "dynamics.substep=0.005";
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     if (!strcmp(argv[i], "--mode") && i + 1 < argc) mode = argv[++i];
@@ -63,9 +188,13 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--reps") && i + 1 < argc) reps = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--trials") && i + 1 < argc) trials = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--no-baseline")) baseline = 0; /* e.g. for profiling */
+    else if (!strcmp(argv[i], "--baseline") && i + 1 < argc) baseline_set = argv[++i];
     else app_die(prog, "unknown or incomplete option '%s' (see the header of apps/bench.c)", argv[i]);
   }
-  if (strcmp(mode, "kinematic")) app_die(prog, "--mode '%s': not available (expected kinematic)", mode);
+  const int dynamic = !strcmp(mode, "dynamic");
+  if (!dynamic && strcmp(mode, "kinematic"))
+    app_die(prog, "--mode '%s': not available (expected kinematic or dynamic)", mode);
+  if (trials == 0) trials = dynamic ? 128 : 2000;
   if (reps < 1 || trials < 1 || threads < 0) app_die(prog, "--reps, --trials must be >= 1, --threads >= 0");
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
@@ -87,6 +216,12 @@ int main(int argc, char **argv) {
     stGenome g;
     st_genome_random(&g, ST_GENES_BASE, &rng);
     st_net_decode(NULL, ST_ARCH_BASE, &g, &np[i], NULL, 0);
+  }
+  if (dynamic) {
+    st_robot_destroy(robot);
+    int rc = bench_dynamic(&cfg, baseline_set, baseline, threads, reps, trials, np, NGENOME);
+    free(np);
+    return rc;
   }
   double q0[ST_NDOF];
   static const double deg[9] = {0, 0, -30, 30, 0, 60, 0, 0, 0};

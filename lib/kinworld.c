@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dynworld.h"
 #include "internal.h"
 #include "ode_util.h"
 #include "selftalk/world.h"
@@ -116,6 +117,10 @@ nomem:
 
 void st_world_destroy(stWorld *w) {
   if (!w) return;
+  if (w->dynamic) { /* a world of st_world_create_dynamic (lib/dynworld.c) */
+    st__dyn_destroy(w);
+    return;
+  }
   kinInternal *k = w->internal_;
   if (k) {
     for (int i = 0; i < k->ngeom; i++) dGeomDestroy(k->geom[i].g);
@@ -263,11 +268,19 @@ static void update_contacts(stWorld *w) {
 }
 
 void st_world_update(stWorld *w) {
+  if (w->dynamic) {
+    st__dyn_update(w);
+    return;
+  }
   st_robot_fk(w->robot, w->qhat, w->R, w->p);
   update_contacts(w);
 }
 
 void st_world_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]) {
+  if (w->dynamic) {
+    st__dyn_reset(w, qhat, obj, target);
+    return;
+  }
   memcpy(w->qhat, qhat, sizeof w->qhat);
   memcpy(w->obj, obj, sizeof w->obj);
   memcpy(w->obj_start, obj, sizeof w->obj_start);

@@ -76,46 +76,19 @@ void st_workspace_free(stWorkspace *ws) {
 
 static stStatus stage_world(const stProtocol *p, stWorkspace *ws, stStage stage, stWorld **w,
                             char *err, size_t errsz) {
+  stStatus st = ST_OK;
   if (stage == ST_STAGE_SIMPLE) {
-    if (!ws->kin) {
-      stStatus st = st_world_create(p->robot, &p->scene, &ws->kin, err, errsz);
-      if (st) return st;
-    }
+    if (!ws->kin) st = st_world_create(p->robot, &p->scene, &ws->kin, err, errsz);
     *w = ws->kin;
-    return ST_OK;
+  } else {
+    if (!ws->dyn) {
+      stDynDef dd;
+      st_dyn_def_from_config(&p->cfg, &dd);
+      st = st_world_create_dynamic(p->robot, &p->scene, &dd, &ws->dyn, err, errsz);
+    }
+    *w = ws->dyn;
   }
-  st__errf(err, errsz, "%s needs the dynamic world, which this build does not have yet",
-           st_stage_name(stage));
-  return ST_ERR_ARG;
-}
-
-static void world_reset(stStage stage, stWorld *w, const stTrialSpec *t, uint64_t key) {
-  (void)stage;
-  (void)key;
-  st_world_reset(w, t->qhat0, t->obj, t->target);
-}
-
-static void world_step(stStage stage, stWorld *w, const double *y) {
-  (void)stage;
-  st_world_step_kinematic(w, y);
-}
-
-static void world_table(stStage stage, stWorld *w, int on) {
-  (void)stage;
-  (void)w;
-  (void)on;
-}
-
-static int world_fell(stStage stage, const stWorld *w) {
-  (void)stage;
-  (void)w;
-  return 0; /* the object never moves in kinematic mode */
-}
-
-static int world_unstable(stStage stage, const stWorld *w) {
-  (void)stage;
-  (void)w;
-  return 0;
+  return st;
 }
 
 /* ---- one trial ---- */
@@ -188,16 +161,16 @@ void st_score_end(stTrialScore *sc, const stFitnessDef *fd, double obj_z, double
   *out = *r;
 }
 
-stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                      const stNetParams *net, uint64_t seed_key, stTrialResult *r, stTraceFn trace,
-                      void *ctx, char *err, size_t errsz) {
+stStatus st_trial_run_controller(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                                 const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                                 stTraceFn trace, void *ctx, char *err, size_t errsz) {
   stWorld *w = NULL;
   stStatus st = stage_world(p, ws, t->stage, &w, err, errsz);
   if (st) return st;
-  world_reset(t->stage, w, t, seed_key);
-  stNetState ns;
-  st_net_reset(net, &ns);
-  const int nin = st_net_ninputs(net->arch);
+  st_world_set_seed(w, seed_key); /* quickstep's shuffling: keyed by the trial, not the thread */
+  st_world_reset(w, t->qhat0, t->obj, t->target);
+  if (ctl->reset) ctl->reset(ctl->self, t);
+  const int nin = ctl->ninputs;
   double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT];
   stQuantities q;
   st_quantities(w, &p->sensor, &q);
@@ -205,21 +178,21 @@ stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t
   st_score_begin(&sc, t);
   int focus_target = 0;
   for (int step = 0; step < t->steps; step++) {
-    if (t->table_off_step >= 0 && step == t->table_off_step) world_table(t->stage, w, 0);
+    if (t->table_off_step >= 0 && step == t->table_off_step) st_world_set_object_table_collision(w, 0);
     /* sense, think, act; primitive stages never give the secondary input */
     st_sensor_inputs(w, &p->sensor, &q, focus_target, step == 0, t->ling, 0.0, in, nin);
-    st_net_step(net, &ns, in, out);
+    ctl->act(ctl->self, w, &q, in, step, out);
     const double y_focus = out[ST_NET_OUT_FOCUS];
     focus_target = st_focus_is_target(&p->sensor, y_focus);
-    world_step(t->stage, w, out);
+    st_world_step(w, out);
     st_quantities(w, &p->sensor, &q);
     /* score the state the step produced */
     const int mask = st_penalty_mask(t->stage, t->primitive, step,
                                      t->table_off_step >= 0 ? t->table_off_step : t->steps);
     double S, P;
     const int event = st_score_step(&sc, &p->fitness, step, &q, y_focus, p->sensor.focus_threshold,
-                                    penalties(p, w, mask), world_fell(t->stage, w),
-                                    world_unstable(t->stage, w), &S, &P);
+                                    penalties(p, w, mask), st_world_object_fell(w),
+                                    st_world_unstable(w), &S, &P);
     if (trace) {
       stTraceStep ts = {step, w, &q, in, out, focus_target,
                         S, P, st_success_now(&p->fitness, t->stage, t->primitive, &q), event};
@@ -229,6 +202,35 @@ stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t
   }
   st_score_end(&sc, &p->fitness, w->obj[2], p->scene.table_top_z, r);
   return ST_OK;
+}
+
+/* the evolved network as a controller */
+typedef struct netCtl {
+  const stNetParams *net;
+  stNetState state;
+} netCtl;
+
+static void net_reset(void *self, const stTrialSpec *t) {
+  (void)t;
+  netCtl *c = self;
+  st_net_reset(c->net, &c->state);
+}
+
+static void net_act(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
+                    double *out) {
+  (void)w;
+  (void)q;
+  (void)step;
+  netCtl *c = self;
+  st_net_step(c->net, &c->state, in, out);
+}
+
+stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                      const stNetParams *net, uint64_t seed_key, stTrialResult *r, stTraceFn trace,
+                      void *ctx, char *err, size_t errsz) {
+  netCtl c = {net, {{0}, {0}, {0}, {0}, 0}};
+  stController ctl = {net_reset, net_act, st_net_ninputs(net->arch), &c};
+  return st_trial_run_controller(p, ws, t, &ctl, seed_key, r, trace, ctx, err, errsz);
 }
 
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,

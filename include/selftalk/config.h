@@ -120,12 +120,12 @@ extern "C" {
   REAL(postures, grasp_oppose, 0.0, 0.0, 1.0, "grasp k=0,1: thumb opposition (fingers fully extended)") \
   REAL(postures, grasp_partial_oppose, 0.3, 0.0, 1.0, "grasp k=2,3: thumb opposition") \
   REAL(postures, grasp_partial_flex, 0.25, 0.0, 1.0, "grasp k=2,3: thumb and finger flexion (partly extended)") \
-  REAL(postures, move_ball_x, 0.02, -0.2, 0.2, "move: ball centre ahead of the palm centre along the fingers, m") \
+  REAL(postures, move_ball_x, 0.035, -0.2, 0.2, "move: ball centre ahead of the palm centre along the fingers, m (0.035: the thumb closes below the equator, so the grasp holds in dynamic mode)") \
   REAL(postures, move_gap, -0.001, -0.05, 0.1, "move: palm above the ball top, m (negative: pressing on it)") \
-  REAL(postures, move_oppose, 0.5, 0.0, 1.0, "move: thumb opposition, normalised") \
+  REAL(postures, move_oppose, 0.8, 0.0, 1.0, "move: thumb opposition, normalised (0.8: holds the ball for 3 s in dynamic mode; 0.5 let it fall)") \
   REAL(postures, move_squeeze, 0.02, 0.0, 1.0, "move: extra flexion after the thumb and fingers first touch the ball (grip)") \
   INT(postures, move_min_fingers, 3, 1, 4, "move: fingers close until this many fingertips (besides the thumb) touch the ball") \
-  ENUM(dynamics, solver, 0, "quickstep|step", "ODE stepper: quickstep (iterative; its constraint shuffling uses a per-thread generator seeded per trial) or step (direct, slower)") \
+  ENUM(dynamics, solver, 1, "quickstep|step", "ODE stepper: quickstep (iterative; its constraint shuffling uses a per-thread generator seeded per trial) or step (direct, slower)") \
   REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \
   INT(dynamics, iterations, 20, 1, 1000, "quickstep solver iterations per sub-step") \
   REAL(dynamics, gravity, 9.81, 0.0, 100.0, "gravity, m/s^2 (downwards)") \
@@ -134,7 +134,19 @@ extern "C" {
   REAL(dynamics, cfm, 1e-5, 0.0, 1.0, "constraint force mixing of joints and contacts") \
   INT(dynamics, max_contacts, 4, 1, 64, "contact points generated per colliding geometry pair") \
   REAL(dynamics, effort_scale, 1.0, 0.0, 1000.0, "joint motor torque limit = URDF effort times this") \
-  REAL(dynamics, fall_margin, 0.0, 0.0, 1.0, "the object has fallen under the table when its centre is this far below the table top, m")
+  REAL(dynamics, fall_margin, 0.0, 0.0, 1.0, "the object has fallen under the table when its centre is this far below the table top, m") \
+  REAL(dynamics, contact_erp, 0.2, 0.0, 1.0, "error reduction parameter of contacts (soft ERP)") \
+  REAL(dynamics, contact_cfm, 1e-4, 0.0, 1.0, "constraint force mixing of contacts (soft CFM; iCub_SIM 1e-4)") \
+  REAL(dynamics, surface_layer, 0.001, 0.0, 0.1, "contact depth allowed without correction, m (iCub_SIM 0.001)") \
+  REAL(dynamics, sor_w, 1.3, 0.1, 2.0, "quickstep successive over-relaxation factor (ODE default 1.3)") \
+  REAL(dynamics, floor_z, -0.6, -100.0, 0.0, "floor plane that catches a dropped object, world z, m (iCub_SIM ground: 0.5976 m below the waist)") \
+  REAL(dynamics, unstable_speed, 50.0, 0.001, 1e6, "a body whose centre moves faster than this makes the world unstable (trial failed), m/s") \
+  REAL(dynamics, unstable_spin, 1000.0, 0.001, 1e6, "a body spinning faster than this makes the world unstable, rad/s") \
+  REAL(dynamics, limit_tolerance_deg, 10.0, 0.0, 180.0, "a joint beyond its range by more than this makes the world unstable, degrees (impacts can push the weak wrist joints a few degrees past their stops)") \
+  REAL(dynamics, stop_margin_deg, 0.5, 0.0, 28.0, "joint stops sit this far outside the qhat range, degrees, so that a servo holding the end of its range never rests on a stop") \
+  REAL(dynamics, fudge_factor, 0.001, 0.0, 1.0, "ODE joint fudge factor: fraction of the motor torque applied explicitly when a powered joint leaves a stop (1 kicks 10 g phalanges)") \
+  BOOL(dynamics, free_motion, 1, "1: while no robot part can reach the table or the object within a sub-step, the robot moves kinematically (its servos cannot saturate) and ODE steps the object alone") \
+  REAL(dynamics, contact_margin, 0.03, 0.0, 1.0, "free motion ends when a robot part comes this close to the table or the object, m (>= the distance a part moves in one sub-step)")
   /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */
 
 /* The configuration: one field per key, named section_key. */

@@ -126,6 +126,22 @@ typedef struct stWorkspace {
 
 void st_workspace_free(stWorkspace *ws);
 
+/* What drives the robot in a trial: the evolved network, or any other controller (e.g. the
+ * scripted one of apps/scripted). act() gets the state and the network inputs of this step and
+ * writes at least 13 outputs: 12 desired normalised DOF positions, then the focus output. */
+typedef struct stController {
+  void (*reset)(void *self, const stTrialSpec *t); /* nullable */
+  void (*act)(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
+              double *out);
+  int ninputs; /* network inputs to prepare (25 or 26) */
+  void *self;
+} stController;
+
+/* Runs one trial with any controller; see st_trial_run. */
+stStatus st_trial_run_controller(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                                 const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                                 stTraceFn trace, void *ctx, char *err, size_t errsz);
+
 /* Runs one trial with a network. seed_key keys the dynamic solver's generator (unused in
  * kinematic mode). Nullable: trace. */
 stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,

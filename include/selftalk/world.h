@@ -41,6 +41,8 @@ typedef struct stWorld {
   int reference_contacts; /* 1: test every geometry with ODE's narrow phase, no culling or
                              shortcuts (slow; for validation and as a benchmark baseline) */
   void *internal_;        /* collision geometry */
+  int dynamic;            /* 1 for a world of st_world_create_dynamic (internal_ is then the
+                             ODE world; set at creation) */
 } stWorld;
 
 /* Allocates a world for a robot and scene (both must outlive it). */
@@ -67,6 +69,125 @@ void st_world_update(stWorld *w);
 
 /* World position of a point given in a body's frame. */
 void st_world_point(const stWorld *w, int body, const double local[3], double out[3]);
+
+/* ---- dynamic mode (thesis §2.1, SPEC §3; lib/dynworld.c, docs/PROTOCOL.md "Dynamic mode") --
+ * An ODE world per stWorld: the robot's links as rigid bodies (massless frames and fixed-joint
+ * children folded into their parent body; the root fixed to the world), hinge joints with
+ * stops and velocity motors of bounded torque, the table (static box), the object (sphere with
+ * its flattened base, one body), a floor under the table, gravity and friction contacts. There
+ * are no robot-robot collisions (as in iCub_SIM by default). While no robot part can reach
+ * the table or the object within a sub-step, the robot moves kinematically by the servo law
+ * (exactly what unsaturated servos do) and ODE steps only the object.
+ *
+ * After every control step the same stWorld fields as in kinematic mode are filled: qhat
+ * (joint readings clamped to [0, 1]; a coupled DOF reports the mean of its joints), R / p
+ * (forward kinematics of the joint angles), obj (the object body's centre) and contacts (what
+ * touched what in the state after any sub-step of the control step). st_world_reset,
+ * st_world_update and st_world_destroy work on both kinds of world. A world belongs to one
+ * thread at a time; worlds share no state, and a trial's trajectory depends only on its
+ * posture, object, target, seed and commands, bit for bit. */
+
+enum { ST_DYN_QUICKSTEP = 0, ST_DYN_STEP, ST_DYN_SOLVER_COUNT }; /* dynamics.solver */
+
+/* The [dynamics] keys (see selftalk/config.h for their meaning and defaults). */
+typedef struct stDynDef {
+  int solver;                /* ST_DYN_QUICKSTEP or ST_DYN_STEP */
+  double substep;            /* s; the control step must be a whole number of sub-steps */
+  int iterations;            /* quickstep iterations per sub-step */
+  double gravity;            /* m/s^2, downwards */
+  double friction;           /* Coulomb coefficient of every contact */
+  double erp, cfm;           /* joints (and joint stops) */
+  double contact_erp, contact_cfm; /* soft contacts */
+  double surface_layer;      /* m of allowed contact penetration */
+  double sor_w;              /* quickstep over-relaxation */
+  int max_contacts;          /* contact points per colliding geometry pair */
+  double effort_scale;       /* motor torque limit = URDF effort times this */
+  double fall_margin;        /* m (st_world_object_fell) */
+  double floor_z;            /* floor plane height (catches a dropped object), m */
+  double unstable_speed;     /* m/s of any body's centre of mass: beyond it the world is unstable */
+  double unstable_spin;      /* rad/s of any body: beyond it the world is unstable */
+  double limit_tolerance;    /* rad beyond a joint's range: beyond it the world is unstable */
+  double stop_margin;        /* rad: the joint stops sit this far outside the qhat range */
+  double fudge_factor;       /* ODE's dParamFudgeFactor of every joint */
+  int free_motion;           /* 1: the robot moves kinematically while nothing can touch it */
+  double contact_margin;     /* m: closer than this to the table or the object, the robot is in
+                                ODE's step */
+} stDynDef;
+
+/* Fills def from the [dynamics] keys. */
+void st_dyn_def_from_config(const stConfig *cfg, stDynDef *def);
+
+/* Allocates a dynamic world (robot, scene and def are read at creation; robot and scene must
+ * outlive the world). Fails with ST_ERR_RANGE on a bad def (e.g. a control step that is not a
+ * whole number of sub-steps) and ST_ERR_MODEL when the model cannot be simulated (a moving
+ * link without mass, a bad inertia, an unsupported geometry); err names the cause. The world
+ * must be reset (st_world_reset) before it is stepped. With solver quickstep, creation checks
+ * once per process that ODE's random generator is the library's per-world one (see
+ * docs/PROTOCOL.md, "Dynamic mode"); when it is not, the world uses solver step instead and
+ * st_world_dynamic_info reports it. */
+stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, const stDynDef *def,
+                                 stWorld **world, char *err, size_t errsz);
+
+/* Key of the per-trial random stream of quickstep's constraint shuffling, used by the next
+ * st_world_reset (0 until set). Give each trial its own key (e.g. from st_rng_keyed); equal
+ * keys and inputs give bit-identical trials. Solver step draws no random numbers; no effect
+ * on a kinematic world. */
+void st_world_set_seed(stWorld *w, uint64_t key);
+
+/* One dynamic control step (robot->dt): every joint's motor runs at alpha_dynamic (y - qhat)
+ * degrees/s (qhat of that joint, y of its DOF clamped to [0, 1]; the velocity clamped to
+ * +-robot->max_velocity; re-evaluated every sub-step) with torque up to URDF effort times
+ * effort_scale; coupled joints each follow their own qhat error, so the object can block them
+ * one by one. Then the stWorld fields are filled and step is incremented. Does nothing once
+ * the world is unstable; a non-finite y makes it unstable. On a kinematic world it is
+ * st_world_step_kinematic. */
+void st_world_step_dynamic(stWorld *w, const double *y);
+
+/* One control step in the world's own mode (kinematic or dynamic). */
+void st_world_step(stWorld *w, const double *y);
+
+/* Switches the object-table collision (on after every reset). Grasp trials switch it off after
+ * 40 steps, move trials after 10 (thesis §2.8.1.2): the object then falls through the table
+ * unless the hand holds it. The contacts of the next sub-step follow the new setting. */
+void st_world_set_object_table_collision(stWorld *w, int on);
+
+/* 1 when the object has fallen: its centre is more than fall_margin below the table top, or
+ * it is outside the table's x/y extent and below the table top. 0 in kinematic mode. */
+int st_world_object_fell(const stWorld *w);
+
+/* 1 when the simulation diverged (NaN or infinite values, a body faster than unstable_speed or
+ * unstable_spin, a joint beyond its range by more than limit_tolerance, a non-finite
+ * command): the caller must end the trial as a failure (the world stays frozen until the next
+ * reset). 0 for a kinematic world. */
+int st_world_unstable(const stWorld *w);
+
+/* Why the world is unstable, e.g. "step 12: body 'l_hand' moves at 73.2 m/s (unstable_speed
+ * 50)"; "" when stable. Owned by the world, valid until its next reset. */
+const char *st_world_unstable_reason(const stWorld *w);
+
+/* Joint angle of every body (rad, robot->nbody entries, 0 for fixed joints): in dynamic mode
+ * the simulated joints' angles, which may lie slightly outside their range (qhat is clamped
+ * to [0, 1]); in kinematic mode those of qhat. */
+void st_world_joint_angles(const stWorld *w, double *angle);
+
+/* Facts about a dynamic world (for benchmarks and logs). */
+typedef struct stDynInfo {
+  int bodies;          /* ODE bodies of the robot (the object not included) */
+  int hinges;          /* hinge joints */
+  int geoms;           /* robot collision geometries */
+  int substeps;        /* sub-steps per control step */
+  int solver;          /* solver in use (ST_DYN_*), after the random-generator check */
+  int rand_interposed; /* 1 when quickstep's shuffling uses the per-world generator */
+  long solver_warnings; /* ODE warnings since the last reset (e.g. "LCP internal error": a
+                           degenerate set of contacts) */
+  long solver_retries;  /* sub-steps redone with softer constraints after such a warning */
+  long dyn_substeps;    /* sub-steps since the last reset with the robot in ODE's step (the
+                           others were free motion) */
+  int robot_in_ode;     /* the robot is in ODE's step now (near the table or the object) */
+} stDynInfo;
+
+/* Fills info (all zero for a kinematic world). */
+void st_world_dynamic_info(const stWorld *w, stDynInfo *info);
 
 #ifdef __cplusplus
 }
