@@ -31,6 +31,7 @@ run_part "neteval against the independent reference" bash tests/check_neteval.sh
 run_part "apps: argument and input errors" bash tests/check_apps.sh
 run_part "simprobe against iKin v1.0" bash tests/check_simprobe.sh
 run_part "evolve: threads, kill and resume, bad input" bash tests/check_evolve.sh
+run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
 if [ "$BUILD" = build ]; then
   run_part "install + pkg-config" bash tests/check_install.sh
 fi

@@ -11,5 +11,18 @@
 #include "selftalk/io.h"
 #include "selftalk/net.h"
 #include "selftalk/rng.h"
+/* the simulator side (links ODE, urdfdom, assimp): robot, world, sensors, stages */
+#include "selftalk/caretaker.h"
+#include "selftalk/evolve.h"
+#include "selftalk/fitness.h"
+#include "selftalk/ik.h"
+#include "selftalk/model.h"
+#include "selftalk/postures.h"
+#include "selftalk/robot.h"
+#include "selftalk/scene.h"
+#include "selftalk/scripted.h"
+#include "selftalk/sensors.h"
+#include "selftalk/trial.h"
+#include "selftalk/world.h"
 
 #endif

@@ -1,0 +1,183 @@
+/* SPDX-License-Identifier: MIT
+ * scripted: the hand-written controller of selftalk/scripted.h on the 16 main-prim trials and
+ * the 8 integrated trials (4 reach postures x 2 targets) - the proof that every primitive is
+ * physically achievable in dynamic mode.
+ *
+ *   scripted [--config FILE] [--set section.key=value]... [--trace DIR] [--only NAME]
+ *            [--threads N]
+ *
+ * Prints one line per trial, in this order:
+ *   trial main-prim PRIMITIVE K success=0|1 steps=N           (PRIMITIVE reach..move, K 0..3)
+ *   trial integrated move-object-to-target K success=0|1 steps=N   (K = 2 posture + target)
+ * then "scripted: N passed, M failed"; exits 0 only when every trial run succeeded. Main-prim
+ * trials are those of generation 0 (their random offsets), scored by the library; steps is
+ * the number of control steps simulated; integrated trials last at most 12 s. --trace DIR
+ * writes DIR/main_PRIMITIVE_K.csv and DIR/integrated_K.csv, one row per step: qhat and the
+ * commands y, palm centre and normal z, object, target, touch sensors on the object, focus
+ * output, the word given, S, P, success_now, end event, the fitness quantities, the contact
+ * flags and the controller's phase. --only runs the trials whose file name (without .csv)
+ * starts with NAME. --threads (default run.threads, 0 = one per core) changes no result. */
+#include <errno.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "app_common.h"
+#include "selftalk/scripted.h"
+
+static const char *prog = "scripted";
+static const char *usage = "usage: scripted [--config FILE] [--set section.key=value]... "
+                           "[--trace DIR] [--only NAME] [--threads N]";
+
+enum { NMAIN = ST_PRIM_TRIALS, NINT = 2 * ST_NPOSTURE, NALL = NMAIN + NINT };
+
+typedef struct traceCtx {
+  FILE *f;
+  const stScripted *s;
+} traceCtx;
+
+static void header(FILE *f) {
+  fprintf(f, "step");
+  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",q%d", d);
+  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",y%d", d);
+  fprintf(f, ",palm_x,palm_y,palm_z,nz,obj_x,obj_y,obj_z,target_x,target_y,target_z");
+  for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",touch%d", i);
+  fprintf(f, ",focus_out,word,S,P,success_now,event,d_r,d_g,d_m,d_mhat,h,p,touching,lifted,"
+             "object_table,arm_table,phase\n");
+}
+
+static void on_step(void *ctx, const stTraceStep *s) {
+  FILE *f = ((traceCtx *)ctx)->f;
+  const stWorld *w = s->world;
+  const stQuantities *q = s->q;
+  fprintf(f, "%d", s->step);
+  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",%.5f", w->qhat[d]);
+  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",%.5f", s->out[d]);
+  fprintf(f, ",%.5f,%.5f,%.5f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f", q->palm[0], q->palm[1],
+          q->palm[2], q->normal[2], w->obj[0], w->obj[1], w->obj[2], w->target[0], w->target[1],
+          w->target[2]);
+  for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",%d", w->contacts.touch_object[i]);
+  int word = -1;
+  for (int m = 0; m < ST_NET_NLING; m++)
+    if (s->in[ST_NET_IN_LING + m] > 0) word = m;
+  fprintf(f, ",%.3f,%s,%.5f,%.5f,%d,%s,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%d,%d,%d,%d,%s\n",
+          s->out[ST_NET_OUT_FOCUS], word >= 0 ? st_primitive_name(word) : "", s->S, s->P,
+          s->success_now,
+          s->event == ST_END_SUCCESS   ? "end_success"
+          : s->event == ST_END_FAILURE ? "end_failure"
+          : s->event == ST_END_QUIET   ? "end_quiet"
+                                       : "",
+          q->d_r, q->d_g, q->d_m, q->d_mhat, q->h, q->p, q->touching, q->lifted,
+          w->contacts.object_table, w->contacts.arm_table,
+          st_scripted_phase(((traceCtx *)ctx)->s));
+}
+
+static void trial_name(int i, char *name, size_t n) {
+  if (i < NMAIN) snprintf(name, n, "main_%s_%d", st_primitive_name(i / ST_NPOSTURE), i % ST_NPOSTURE);
+  else snprintf(name, n, "integrated_%d", i - NMAIN);
+}
+
+int main(int argc, char **argv) {
+  appConfigArgs ca;
+  memset(&ca, 0, sizeof ca);
+  const char *trace_dir = NULL, *only = NULL;
+  int threads = -1;
+  for (int i = 1; i < argc; i++) {
+    if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
+    const char *a = argv[i];
+    if (!strcmp(a, "--trace") && i + 1 < argc) trace_dir = argv[++i];
+    else if (!strcmp(a, "--only") && i + 1 < argc) only = argv[++i];
+    else if (!strcmp(a, "--threads") && i + 1 < argc) {
+      char *end;
+      const long v = strtol(argv[++i], &end, 10);
+      if (*end || end == argv[i] || v < 0 || v > 1024)
+        app_die(prog, "--threads '%s': expected 0..1024 (0 = one per core)", argv[i]);
+      threads = (int)v;
+    } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      printf("%s\n", usage);
+      return 0;
+    } else {
+      app_die(prog, "unknown or incomplete option '%s' (%s)", a, usage);
+    }
+  }
+  stConfig cfg;
+  app_config_resolve(&ca, &cfg, prog);
+  if (threads < 0) threads = cfg.run_threads;
+  if (threads <= 0) threads = omp_get_num_procs();
+  if (trace_dir && mkdir(trace_dir, 0777) != 0 && errno != EEXIST)
+    app_die(prog, "%s: cannot create the directory", trace_dir);
+  char err[1024];
+  stProtocol *p = NULL;
+  if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
+
+  const int int_steps = (int)(12.0 / cfg.robot_control_dt + 0.5); /* 12 s (thesis 2.9) */
+  int run[NALL], success[NALL], steps[NALL], failed_setup = 0;
+  char why[NALL][1100];
+  for (int i = 0; i < NALL; i++) {
+    char name[64];
+    trial_name(i, name, sizeof name);
+    run[i] = !only || !strncmp(name, only, strlen(only));
+    success[i] = steps[i] = 0;
+    why[i][0] = 0;
+  }
+#pragma omp parallel num_threads(threads) reduction(+ : failed_setup)
+  {
+    stWorkspace ws = {NULL, NULL};
+    stScripted *s = NULL;
+    char terr[1024];
+    if (st_scripted_create(p, &s, terr, sizeof terr)) failed_setup++;
+#pragma omp for schedule(dynamic, 1)
+    for (int i = 0; i < NALL; i++) {
+      if (!run[i] || !s) continue;
+      char name[64], path[1040];
+      trial_name(i, name, sizeof name);
+      traceCtx tc = {NULL, s};
+      if (trace_dir) {
+        snprintf(path, sizeof path, "%s/%s.csv", trace_dir, name);
+        if (!(tc.f = fopen(path, "w"))) snprintf(why[i], sizeof why[i], "%s: cannot write", path);
+        else header(tc.f);
+      }
+      stStatus st;
+      if (i < NMAIN) {
+        stTrialResult r;
+        st = st_scripted_main_trial(p, &ws, s, i, &r, tc.f ? on_step : NULL, &tc, terr, sizeof terr);
+        if (!st) {
+          success[i] = r.success;
+          steps[i] = (int)r.steps_run;
+        }
+      } else {
+        const int k = (i - NMAIN) / 2, t = (i - NMAIN) % 2;
+        stIntegratedResult r;
+        st = st_scripted_integrated(p, &ws, s, k, t, int_steps, &r, tc.f ? on_step : NULL, &tc,
+                                    terr, sizeof terr);
+        if (!st) {
+          success[i] = r.success;
+          steps[i] = r.steps;
+        }
+      }
+      if (st) snprintf(why[i], sizeof why[i], "%s", terr);
+      if (tc.f && fclose(tc.f) != 0) snprintf(why[i], sizeof why[i], "%s: write error", path);
+    }
+    st_scripted_destroy(s);
+    st_workspace_free(&ws);
+  }
+  if (failed_setup) app_die(prog, "cannot create the controller (out of memory)");
+  int pass = 0, fail = 0;
+  for (int i = 0; i < NALL; i++) {
+    if (!run[i]) continue;
+    if (why[i][0]) fprintf(stderr, "%s: %s\n", prog, why[i]);
+    if (i < NMAIN)
+      printf("trial main-prim %s %d success=%d steps=%d\n", st_primitive_name(i / ST_NPOSTURE),
+             i % ST_NPOSTURE, success[i], steps[i]);
+    else
+      printf("trial integrated move-object-to-target %d success=%d steps=%d\n", i - NMAIN,
+             success[i], steps[i]);
+    if (success[i] && !why[i][0]) pass++;
+    else fail++;
+  }
+  printf("scripted: %d passed, %d failed\n", pass, fail);
+  st_protocol_destroy(p);
+  return fail == 0 && pass > 0 ? 0 : 1;
+}

@@ -1,0 +1,98 @@
+/* SPDX-License-Identifier: MIT
+ * libselftalk: a hand-written controller (no evolution) that performs every primitive of the
+ * main-prim stage (thesis §2.8) and the integrated sequence of §2.9.3 in dynamic mode. It is
+ * the existence proof that the physics allows what evolution is asked to find: reach above the
+ * object, open the hand palm down, grasp the 0.2 kg ball and hold it without the table, lift
+ * it and carry it to a target.
+ *
+ * It implements the stController interface of selftalk/trial.h and, like the evolved network,
+ * learns which primitive to perform from the linguistic inputs (21-24: reach, open, grasp,
+ * move; none: it holds still). It reads the world (measured qhat, link poses, object centre,
+ * target, touch sensors) and plans with the inverse kinematics of selftalk/ik.h: the palm
+ * centre, or the point of the palm frame where the ball sits, plus the palm normal pointing
+ * down. Under SPEC §3's law (velocity alpha (y - qhat) deg/s, clamped) a command
+ * y = qhat + g (q_goal - qhat) / (1 - exp(-alpha dt / range)) closes a fraction g of the error
+ * per step; thumb and fingers are commanded beyond their contact flexion, so that their
+ * motors push with their bounded torque. In short (numbers and reasons: lib/scripted.c and
+ * docs/PROTOCOL.md, "Scripted controller"):
+ *   reach: palm centre to the reach point, palm down, hand open, thumb beside the palm;
+ *   open:  the same target; the palm rises slowly while the hand is still closed;
+ *   grasp: the palm over the ball with the ball ahead along the fingers while the thumb turns
+ *          to opposition behind it (its tip kept off the table and clear of the ball); then
+ *          thumb and fingers close and are held a little beyond contact; the thumb keeps
+ *          pushing the ball up into the palm (thumb behind/below, fingers in front);
+ *   move:  keep the grip (a grasp still closing is finished first), lift the ball straight
+ *          up, then move in joint space to the posture that puts the ball at the target with
+ *          the palm down (IK from several starts, least cost plus motion). Focus output: target
+ *          while moving, object otherwise.
+ * State carries over from one primitive to the next (the integrated sequence): a grip made by
+ * grasp is kept by move.
+ *
+ * One stScripted per thread; it allocates only at creation (the inverse kinematics allocates
+ * one buffer per solve). Deterministic: the same world and inputs give the same commands. */
+#ifndef SELFTALK_SCRIPTED_H
+#define SELFTALK_SCRIPTED_H
+
+#include "selftalk/caretaker.h"
+#include "selftalk/trial.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct stScripted stScripted;
+
+/* A controller for the protocol's robot and scene (p must outlive it). */
+stStatus st_scripted_create(const stProtocol *p, stScripted **out, char *err, size_t errsz);
+void st_scripted_destroy(stScripted *s); /* nullable */
+
+/* The controller as an stController (reset clears its state; ninputs 25). */
+stController st_scripted_controller(stScripted *s);
+
+/* What the controller is doing (after its last act): "none", "reach", "open",
+ * "grasp:approach|close|hold", "move:secure|lift|carry". For traces. */
+const char *st_scripted_phase(const stScripted *s);
+
+/* Main-prim trial `index` (0..15: primitive index / 4, posture index % 4) of generation 0,
+ * scored by the library (st_trial_run_controller). Nullable: trace. */
+stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted *s, int index,
+                                stTrialResult *r, stTraceFn trace, void *ctx, char *err,
+                                size_t errsz);
+
+/* How an integrated trial went. */
+typedef struct stIntegratedResult {
+  int success;        /* the object was at the target, lifted, and still lifted at the end */
+  int steps;          /* control steps run */
+  int success_step;   /* first step with the object within target_radius and lifted; -1 */
+  int fell;           /* the object fell off / under the table */
+  int unstable;       /* the simulation diverged */
+  int switch_step[ST_NPRIM]; /* step each caretaker word was first given, -1 (jumped) */
+} stIntegratedResult;
+
+/* The integrated sequence (thesis §2.9.3, §2.10.1): the robot starts in reach posture k, the
+ * object at scene position k (no offset), target t (0 or 1, no offset); the caretaker names
+ * the primitive each step (silent at step 0; the secondary input "move-object-to-target" is
+ * given throughout) and the controller performs it. The object-table collision stays on.
+ * Success: the object centre comes within scene.target_radius of the target while lifted
+ * (touching the robot, not the table); the trial then runs fitness.reach_hold_steps more
+ * steps and succeeds if the object is still lifted (thesis §2.9: "moved to the target more
+ * than 20 steps ago and still held"). It ends as a failure when the object falls or the world
+ * diverges, else after max_steps (12 s: 240 steps). Trace steps carry the network inputs the
+ * controller saw (the caretaker's word in 21-24) and S = P = 0. Nullable: trace. */
+stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted *s, int k,
+                                int t, int max_steps, stIntegratedResult *r, stTraceFn trace,
+                                void *ctx, char *err, size_t errsz);
+
+/* The same sequence from any start: posture qhat0, object centre obj, target; seed_key keys the
+ * dynamic solver's generator (st_world_set_seed). For tests with offsets (thesis §2.10.1). */
+stStatus st_scripted_sequence(const stProtocol *p, stWorkspace *ws, stScripted *s,
+                             const double qhat0[ST_NDOF], const double obj[3],
+                             const double target[3], uint64_t seed_key, int max_steps,
+                             stIntegratedResult *r, stTraceFn trace, void *ctx, char *err,
+                             size_t errsz);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
