@@ -54,6 +54,24 @@ const char *st_test_tmpdir(char *path, size_t n) {
   return system(cmd) == 0 ? path : NULL;
 }
 
+static stTestFixture g_fixture;
+static int g_fixture_loaded;
+
+static void fixture_free(void) { st_robot_destroy(g_fixture.robot); }
+
+const stTestFixture *st_test_fixture(void) {
+  if (!g_fixture_loaded) {
+    char err[512];
+    g_fixture_loaded = 1;
+    st_config_default(&g_fixture.cfg);
+    if (st_robot_create(&g_fixture.cfg, &g_fixture.robot, err, sizeof err))
+      fprintf(stderr, "\n  %s\n", err);
+    st_scene_from_config(&g_fixture.cfg, &g_fixture.scene);
+    atexit(fixture_free);
+  }
+  return &g_fixture;
+}
+
 int main(int argc, char **argv) {
   if (CU_initialize_registry() != CUE_SUCCESS) return 1;
   const char *filter = argc > 1 ? argv[1] : NULL;

@@ -15,25 +15,10 @@
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
 
-static stConfig g_cfg;
-static stRobot *g_robot;
-static stScene g_scene;
-
-static stRobot *robot(void) {
-  if (!g_robot) {
-    char err[512];
-    st_config_default(&g_cfg);
-    if (st_robot_create(&g_cfg, &g_robot, err, sizeof err)) fprintf(stderr, "\n  %s\n", err);
-    st_scene_from_config(&g_cfg, &g_scene);
-  }
-  return g_robot;
-}
-
-static int cleanup(void) {
-  st_robot_destroy(g_robot);
-  g_robot = NULL;
-  return 0;
-}
+/* the shared default config, robot and scene (tests/main.c) */
+#define g_cfg (st_test_fixture()->cfg)
+#define g_scene (st_test_fixture()->scene)
+static stRobot *robot(void) { return st_test_fixture()->robot; }
 
 /* a dynamic world with the default [dynamics] keys, then "section.key=value" overrides */
 static stWorld *make_world(const stScene *scene, const char *const *set) {
@@ -615,7 +600,7 @@ static void test_unstable_reported(void) {
 }
 
 void st_suite_dynamics(void) {
-  CU_pSuite st__suite = CU_add_suite("dynamics", NULL, cleanup);
+  CU_pSuite st__suite = CU_add_suite("dynamics", NULL, NULL);
   ST_ADD_TEST(test_create_errors);
   ST_ADD_TEST(test_ball_rests);
   ST_ADD_TEST(test_free_fall);

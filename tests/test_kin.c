@@ -10,25 +10,10 @@
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
 
-static stRobot *g_robot;
-static stScene g_scene;
-static stConfig g_cfg;
-
-static stRobot *robot(void) {
-  if (!g_robot) {
-    char err[512];
-    st_config_default(&g_cfg);
-    if (st_robot_create(&g_cfg, &g_robot, err, sizeof err)) fprintf(stderr, "\n  %s\n", err);
-    st_scene_from_config(&g_cfg, &g_scene);
-  }
-  return g_robot;
-}
-
-static int cleanup(void) {
-  st_robot_destroy(g_robot);
-  g_robot = NULL;
-  return 0;
-}
+/* the shared default config, robot and scene (tests/main.c) */
+#define g_cfg (st_test_fixture()->cfg)
+#define g_scene (st_test_fixture()->scene)
+static stRobot *robot(void) { return st_test_fixture()->robot; }
 
 /* standard DH link: Rz(theta) Tz(d) Tx(a) Rx(alpha), composed onto T (4x4 row-major) */
 static void dh(double *T, double a, double d, double alpha, double theta) {
@@ -362,7 +347,7 @@ static void test_contacts_match_reference(void) {
 }
 
 void st_suite_kin(void) {
-  CU_pSuite st__suite = CU_add_suite("kin", NULL, cleanup);
+  CU_pSuite st__suite = CU_add_suite("kin", NULL, NULL);
   ST_ADD_TEST(test_ee_matches_ikin);
   ST_ADD_TEST(test_actuation_law);
   ST_ADD_TEST(test_world_saturating);

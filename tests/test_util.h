@@ -25,6 +25,18 @@
  * when the test binary exits. */
 const char *st_test_write_tmp(char *path, size_t n, const char *suffix, const char *text);
 
+/* The default config, robot and scene, loaded on first use and shared by the suites (freed
+ * when the test binary exits). robot is NULL when the model cannot be loaded (the message is
+ * printed). */
+#include "selftalk/robot.h"
+#include "selftalk/scene.h"
+typedef struct stTestFixture {
+  stConfig cfg;
+  stRobot *robot;
+  stScene scene;
+} stTestFixture;
+const stTestFixture *st_test_fixture(void);
+
 /* a fresh temporary directory, removed (recursively) when the test binary exits */
 const char *st_test_tmpdir(char *path, size_t n);
 
