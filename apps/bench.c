@@ -39,12 +39,13 @@ static int cmp_double(const void *a, const void *b) {
 }
 
 /* one kinematic trial: sense, think, act; returns a checksum so nothing is optimised away */
-static double kin_trial(stWorld *w, const stSensorDef *sd, const stNetParams *np, const double *q0,
+static double kin_trial(stWorld *w, const stConfig *cfg, const stSensorDef *sd, const stNetParams *np, const double *q0,
                         const double *obj, const double *target, int steps) {
   stNetState ns;
   st_net_reset(np, &ns);
   st_world_reset(w, q0, obj, target);
-  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT], ling[4] = {10, 0, 0, 0}, sum = 0;
+  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT], ling[4], sum = 0;
+  st_net_label_input(ST_PRIM_REACH, cfg->network_linguistic_input, ling);
   int focus_target = 0;
   for (int t = 0; t < steps; t++) {
     stQuantities q;
@@ -59,15 +60,18 @@ static double kin_trial(stWorld *w, const stSensorDef *sd, const stNetParams *np
 }
 
 /* one dynamic trial: posture, object position and word of a primitive */
-static double dyn_trial(stWorld *w, const stSensorDef *sd, const stNetParams *np, const double *q0,
+static double dyn_trial(stWorld *w, const stConfig *cfg, const stSensorDef *sd, const stNetParams *np, const double *q0,
                         int prim, const double *obj, const double *target, int steps, uint64_t seed) {
   stNetState ns;
   st_net_reset(np, &ns);
   st_world_set_seed(w, seed);
   st_world_reset(w, q0, obj, target);
-  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT], ling[4] = {0, 0, 0, 0}, sum = 0;
-  ling[prim] = 10;
-  const int off = prim == ST_PRIM_GRASP ? 40 : prim == ST_PRIM_MOVE ? 10 : -1;
+  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT], ling[4], sum = 0;
+  st_net_label_input(prim, cfg->network_linguistic_input, ling);
+  /* the main-prim trials' table switch (stage.grasp_table_off_step, move_table_off_step) */
+  const int off = prim == ST_PRIM_GRASP  ? cfg->stage_grasp_table_off_step
+                  : prim == ST_PRIM_MOVE ? cfg->stage_move_table_off_step
+                                         : -1;
   int focus_target = 0;
   for (int t = 0; t < steps && !st_world_unstable(w); t++) {
     if (t == off) st_world_set_object_table_collision(w, 0);
@@ -87,7 +91,7 @@ typedef struct dynStats {
 } dynStats;
 
 /* T dynamic trials on the given threads; returns the elapsed time, fills per_trial */
-static double dyn_run(const stRobot *robot, const stScene *scene, const stDynDef *def,
+static double dyn_run(const stConfig *cfg, const stRobot *robot, const stScene *scene, const stDynDef *def,
                       const stSensorDef *sd, const stNetParams *np, int ngenome,
                       double (*q0)[ST_NPOSTURE][ST_NDOF], int trials, int steps, int threads,
                       double *per_trial, dynStats *stats, stDynInfo *info) {
@@ -103,7 +107,7 @@ static double dyn_run(const stRobot *robot, const stScene *scene, const stDynDef
 #pragma omp for schedule(dynamic, 4)
       for (int t = 0; t < trials; t++) {
         const int prim = t % ST_NPRIM, k = (t / ST_NPRIM) % ST_NPOSTURE;
-        per_trial[t] = dyn_trial(w, sd, &np[t % ngenome], q0[prim][k], prim, scene->obj_pos[k],
+        per_trial[t] = dyn_trial(w, cfg, sd, &np[t % ngenome], q0[prim][k], prim, scene->obj_pos[k],
                                  scene->target[k % 2], steps, (uint64_t)t);
         stDynInfo in;
         st_world_dynamic_info(w, &in);
@@ -149,7 +153,7 @@ static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int base
   for (int rr = 0; rr < 2 * reps; rr++) {
     const int is_base = rr % 2, r = rr / 2; /* interleaved so drifts hit both alike */
     if (is_base && !baseline) continue;
-    double dt = dyn_run(robot, &scene, is_base ? &base_def : &def, &sd, np, ngenome, q0, trials,
+    double dt = dyn_run(cfg, robot, &scene, is_base ? &base_def : &def, &sd, np, ngenome, q0, trials,
                         steps, threads, per_trial, is_base ? &bst : &st, is_base ? &binfo : &info);
     (is_base ? base : rate)[r] = (double)trials * steps / dt;
   }
@@ -244,7 +248,7 @@ int main(int argc, char **argv) {
         w->reference_contacts = reference;
 #pragma omp for schedule(dynamic, 16)
         for (int t = 0; t < trials; t++)
-          per_trial[t] = kin_trial(w, &sd, &np[t % NGENOME], q0, scene.obj_pos[t % 4], scene.target[t % 2], steps);
+          per_trial[t] = kin_trial(w, &cfg, &sd, &np[t % NGENOME], q0, scene.obj_pos[t % 4], scene.target[t % 2], steps);
         st_world_destroy(w);
       }
     }

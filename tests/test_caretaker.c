@@ -3,17 +3,22 @@
 #include "selftalk/caretaker.h"
 #include "test_util.h"
 
-static void test_caretaker_sequence(void) {
+/* a default caretaker and an empty state */
+static void setup(stFitnessDef *d, stCaretaker *c, stQuantities *q, stContacts *k) {
   stConfig cfg;
   st_config_default(&cfg);
+  st_fitness_def_from_config(&cfg, d);
+  st_caretaker_init(c, &cfg);
+  memset(q, 0, sizeof *q);
+  memset(k, 0, sizeof *k);
+}
+
+static void test_caretaker_sequence(void) {
   stFitnessDef d;
-  st_fitness_def_from_config(&cfg, &d);
   stCaretaker c;
-  st_caretaker_init(&c, &cfg);
   stQuantities q;
-  memset(&q, 0, sizeof q);
   stContacts k;
-  memset(&k, 0, sizeof k);
+  setup(&d, &c, &q, &k);
   q.d_r = 0.2;
   q.h = 1.0;
   q.p = 0.5;
@@ -40,16 +45,11 @@ static void test_caretaker_sequence(void) {
 
 /* open is jumped when its condition already holds as reach ends */
 static void test_caretaker_jump(void) {
-  stConfig cfg;
-  st_config_default(&cfg);
   stFitnessDef d;
-  st_fitness_def_from_config(&cfg, &d);
   stCaretaker c;
-  st_caretaker_init(&c, &cfg);
   stQuantities q;
-  memset(&q, 0, sizeof q);
   stContacts k;
-  memset(&k, 0, sizeof k);
+  setup(&d, &c, &q, &k);
   q.d_r = 0.2;
   q.h = 0.9;
   q.p = 0.95;
