@@ -12,7 +12,14 @@ import sys
 
 
 def summarise(run_dir):
-    rows = list(csv.DictReader(open(run_dir + "/fitness.csv")))
+    path = run_dir + "/fitness.csv"
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        sys.exit("runs_summary: %s: %s" % (path, e.strerror))
+    if not rows or "all_success" not in rows[0]:
+        sys.exit("runs_summary: %s: expected the fitness.csv of apps/evolve (with all_success)" % path)
     done = {}
     for r in rows:
         if int(r["all_success"]) >= 5 and r["stage"] not in done:
@@ -43,7 +50,7 @@ def main(argv):
         print(__doc__.strip(), file=sys.stderr)
         return 2
     out = [summarise(d) for d in argv[1:]]
-    w = csv.DictWriter(sys.stdout, fieldnames=list(out[0].keys()))
+    w = csv.DictWriter(sys.stdout, fieldnames=list(out[0].keys()), lineterminator="\n")
     w.writeheader()
     w.writerows(out)
     for stage in ("simple_prim_done", "main_prim_done"):

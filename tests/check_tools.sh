@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# tools/: runs_summary.py and plot_fitness.py on hand-made fitness.csv files whose answers are
+# known (which generation completes each stage, how many solved spans the plot draws).
+set -u
+pass=0 fail=0
+ok() { pass=$((pass + 1)); echo "ok   $1"; }
+bad() { fail=$((fail + 1)); echo "FAIL $1"; }
+t=$(mktemp -d)
+trap 'rm -rf "$t"' EXIT
+
+# run a: simple-prim completes at generation 2 (first row with all_success >= 5), main-prim at 5
+mk() { # DIR then rows "gen stage all_success best trials16"
+  local d=$1; shift
+  mkdir -p "$d"
+  {
+    printf 'generation,best,mean,worst,best_bonus,stage,stage_generation,all_success,best_successes'
+    printf ',best_F_reach,best_F_open,best_F_grasp,best_F_move'
+    for k in $(seq 0 15); do printf ',best_t%d' "$k"; done
+    echo
+    while [ $# -gt 0 ]; do
+      read -r g st all best tr <<<"$1"
+      printf '%s,%s,%s,0,0,%s,0,%s,0,1,2,3,4' "$g" "$best" "$best" "$st" "$all"
+      for k in $(seq 0 15); do printf ',%s' "${tr:$k:1}"; done
+      echo
+      shift
+    done
+  } >"$d/fitness.csv"
+}
+mk "$t/a" "0 simple-prim 0 10 1000000000000000" "1 simple-prim 4 20 1100000000000000" \
+  "2 simple-prim 5 30 1111111111111111" "3 main-prim 0 5 1111000000000000" \
+  "4 main-prim 1 6 1111111100000000" "5 main-prim 7 9 1111111111111111" "6 main-prim 9 9 1111111111111110"
+mk "$t/b" "0 simple-prim 5 10 1111111111111111" "1 main-prim 2 5 0000000000000000"
+mk "$t/c" "0 simple-prim 3 10 0000000000000000" "1 simple-prim 6 10 1111111111111111" \
+  "2 simple-prim 6 10 1111111111111111" "3 simple-prim 6 10 1111111111111111" "4 main-prim 5 11 1111111111111111"
+
+out=$(python3 tools/runs_summary.py "$t/a" "$t/b" "$t/c" 2>&1)
+row() { echo "$out" | grep "^$1,"; }
+[ "$(row "$t/a" | cut -d, -f2-5)" = "7,2,5,main-prim" ] && ok "runs_summary: run a completes at 2 and 5, 7 generations" || bad "runs_summary run a: $(row "$t/a")"
+[ "$(row "$t/b" | cut -d, -f3-4)" = "0," ] && ok "runs_summary: run b has no main-prim completion" || bad "runs_summary run b: $(row "$t/b")"
+[ "$(row "$t/a" | cut -d, -f8)" = "1111111111111110" ] && ok "runs_summary: final best's trials" || bad "runs_summary trials: $(row "$t/a")"
+# simple-prim completions 2, 0, 1: median 1, inclusive quartiles 0.5 and 1.5
+echo "$out" | grep -q "^# simple_prim_done: 3 of 3 runs, median 1 (quartiles 0.5, 1.5)" && ok "runs_summary: median and quartiles" || bad "runs_summary stats: $out"
+echo "$out" | grep -q "^# main_prim_done: 2 of 3 runs, median 4.5" && ok "runs_summary: main-prim over the runs that completed it" || bad "runs_summary main: $out"
+
+python3 tools/plot_fitness.py "$t/a/fitness.csv" -o "$t/a.svg" >/dev/null 2>&1 || bad "plot_fitness exit"
+# trial spans: t0 solved 0..6 (1 span); t1 1..6 (1); t2,t3 2..6; t4..7: 2, then 4..6 -> 2 spans each;
+# t8..14: 2, 5 -> 2 spans each; t15: 2, 5 -> 2 spans; total 1+1+2+4*2+7*2+2 = 28
+n=$(grep -c '<rect x=' "$t/a.svg")
+# 3 panel frames + 28 spans
+[ "$n" = 31 ] && ok "plot_fitness: 28 solved spans and 3 panels" || bad "plot_fitness rects: $n"
+[ "$(grep -c '<polyline' "$t/a.svg")" = 6 ] && ok "plot_fitness: best, mean and four F_p lines" || bad "plot_fitness lines"
+grep -q '>main-prim</text>' "$t/a.svg" && ok "plot_fitness: stage change marked" || bad "plot_fitness stage mark"
+python3 tools/plot_fitness.py "$t/a/fitness.csv" --from 100 >/dev/null 2>"$t/err"; rc=$?
+[ $rc != 0 ] && grep -q "no generation in the requested range" "$t/err" && ok "plot_fitness: empty range refused" || bad "plot_fitness empty range rc=$rc"
+printf 'gen,x\n1,2\n' >"$t/bad.csv"
+python3 tools/plot_fitness.py "$t/bad.csv" >/dev/null 2>"$t/err"; rc=$?
+[ $rc != 0 ] && grep -q "bad.csv: expected a fitness.csv" "$t/err" && ok "plot_fitness: wrong columns refused, naming the file" || bad "plot_fitness bad csv rc=$rc"
+python3 tools/runs_summary.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
+[ $rc != 0 ] && grep -q "nope/fitness.csv" "$t/err" && ok "runs_summary: missing run refused, naming the file" || bad "runs_summary missing rc=$rc"
+echo "check_tools: $pass passed, $fail failed"
+[ "$fail" = 0 ]

@@ -1,0 +1,179 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Plot a run's fitness.csv as a self-contained SVG (standard library only).
+
+    python3 tools/plot_fitness.py RUN_DIR/fitness.csv [-o plot.svg] [--from G] [--to G]
+
+Three panels over generations: best and mean fitness (stage changes marked), the best
+individual's per-primitive fitness F_p (the harmonic mean's parts: the lowest is the one holding
+the run back), and which of the 16 trials the best solves (one row per trial, filled when
+solved). This is the evidence to look at when a run stalls. The columns are those apps/evolve
+writes (see docs/PROTOCOL.md, "Evolution runs"); only generation and best are required.
+"""
+import argparse
+import csv
+import os
+import sys
+
+PRIMS = ["reach", "open", "grasp", "move"]
+COLOURS = {"best": "#1f77b4", "mean": "#ff7f0e", "reach": "#2ca02c", "open": "#9467bd",
+           "grasp": "#d62728", "move": "#8c564b"}
+
+
+def die(msg):
+    print(f"plot_fitness: {msg}", file=sys.stderr)
+    sys.exit(1)
+
+
+def read(path, lo, hi):
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        die(f"{path}: {e.strerror}")
+    if not rows or "generation" not in rows[0] or "best" not in rows[0]:
+        die(f"{path}: expected a fitness.csv with columns generation,best,...")
+    out = []
+    for n, r in enumerate(rows, start=2):
+        try:
+            g = int(r["generation"])
+        except (TypeError, ValueError):
+            die(f"{path}:{n}: generation '{r.get('generation')}' is not an integer")
+        if (lo is None or g >= lo) and (hi is None or g <= hi):
+            out.append(r)
+    if not out:
+        die(f"{path}: no generation in the requested range")
+    return out
+
+
+def num(r, k):
+    try:
+        return float(r[k])
+    except (KeyError, TypeError, ValueError):
+        return None
+
+
+class Panel:
+    """One plot area: maps (generation, value) to SVG coordinates."""
+
+    def __init__(self, svg, top, height, g0, g1, v0, v1, title):
+        self.svg, self.top, self.h = svg, top, height
+        self.left, self.w = 70, 820
+        self.g0, self.g1 = g0, g1 if g1 > g0 else g0 + 1
+        self.v0, self.v1 = v0, v1 if v1 > v0 else v0 + 1
+        svg.append(f'<rect x="{self.left}" y="{top}" width="{self.w}" height="{height}" '
+                   'fill="none" stroke="#888"/>')
+        svg.append(f'<text x="{self.left}" y="{top - 6}" font-size="13">{title}</text>')
+
+    def x(self, g):
+        return self.left + self.w * (g - self.g0) / (self.g1 - self.g0)
+
+    def y(self, v):
+        return self.top + self.h * (1 - (v - self.v0) / (self.v1 - self.v0))
+
+    def yticks(self, n=4):
+        for i in range(n + 1):
+            v = self.v0 + (self.v1 - self.v0) * i / n
+            y = self.y(v)
+            self.svg.append(f'<text x="{self.left - 6}" y="{y + 4:.1f}" font-size="11" '
+                            f'text-anchor="end">{v:.4g}</text>')
+            self.svg.append(f'<line x1="{self.left}" x2="{self.left + self.w}" y1="{y:.1f}" '
+                            f'y2="{y:.1f}" stroke="#eee"/>')
+
+    def xticks(self, n=8):
+        for i in range(n + 1):
+            g = round(self.g0 + (self.g1 - self.g0) * i / n)
+            x = self.x(g)
+            self.svg.append(f'<text x="{x:.1f}" y="{self.top + self.h + 14}" font-size="11" '
+                            f'text-anchor="middle">{g}</text>')
+
+    def line(self, gs, vs, colour, label, slot):
+        pts = " ".join(f"{self.x(g):.1f},{self.y(v):.1f}" for g, v in zip(gs, vs) if v is not None)
+        if not pts:
+            return
+        self.svg.append(f'<polyline points="{pts}" fill="none" stroke="{colour}" '
+                        'stroke-width="1.2"/>')
+        lx = self.left + self.w + 10
+        ly = self.top + 14 + 16 * slot
+        self.svg.append(f'<line x1="{lx}" x2="{lx + 18}" y1="{ly - 4}" y2="{ly - 4}" '
+                        f'stroke="{colour}" stroke-width="2"/>')
+        self.svg.append(f'<text x="{lx + 22}" y="{ly}" font-size="11">{label}</text>')
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("csv")
+    ap.add_argument("-o", "--out", default=None, help="SVG file (default: next to the CSV)")
+    ap.add_argument("--from", dest="lo", type=int, default=None, help="first generation")
+    ap.add_argument("--to", dest="hi", type=int, default=None, help="last generation")
+    a = ap.parse_args()
+    rows = read(a.csv, a.lo, a.hi)
+    out = a.out or (a.csv[:-4] if a.csv.endswith(".csv") else a.csv) + ".svg"
+
+    gs = [int(r["generation"]) for r in rows]
+    g0, g1 = gs[0], gs[-1]
+    best = [num(r, "best") for r in rows]
+    mean = [num(r, "mean") for r in rows]
+    fp = {p: [num(r, f"best_F_{p}") for r in rows] for p in PRIMS}
+    trials = [k for k in range(16) if f"best_t{k}" in rows[0]]
+
+    svg = []
+    vals = [v for v in best + mean if v is not None]
+    top = Panel(svg, 30, 200, g0, g1, min(0.0, min(vals)), max(vals) * 1.05,
+                f"{a.csv}: fitness (best, mean)")
+    top.yticks()
+    top.xticks()
+    top.line(gs, best, COLOURS["best"], "best", 0)
+    top.line(gs, mean, COLOURS["mean"], "mean", 1)
+    # stage boundaries: where the stage column changes
+    for i in range(1, len(rows)):
+        if rows[i].get("stage") != rows[i - 1].get("stage"):
+            x = top.x(gs[i])
+            svg.append(f'<line x1="{x:.1f}" x2="{x:.1f}" y1="30" y2="230" stroke="#555" '
+                       'stroke-dasharray="4,3"/>')
+            svg.append(f'<text x="{x + 4:.1f}" y="44" font-size="11">{rows[i]["stage"]}</text>')
+    height = 250
+    if any(v is not None for p in PRIMS for v in fp[p]):
+        vals = [v for p in PRIMS for v in fp[p] if v is not None]
+        mid = Panel(svg, 270, 180, g0, g1, min(0.0, min(vals)), max(vals) * 1.05,
+                    "best individual's F_p per primitive")
+        mid.yticks()
+        mid.xticks()
+        for i, p in enumerate(PRIMS):
+            mid.line(gs, fp[p], COLOURS[p], f"F_{p}", i)
+        height = 470
+    if trials:
+        t = Panel(svg, height + 20, 10 * len(trials), g0, g1, 0, len(trials),
+                  "trials the best solves (row k = trial k; reach 0-3, open 4-7, grasp 8-11, "
+                  "move 12-15)")
+        t.xticks()
+        wcell = max(t.w / max(1, g1 - g0 + 1), 0.5)
+        for k in trials:
+            y = t.top + 10 * k
+            svg.append(f'<text x="{t.left - 6}" y="{y + 9}" font-size="9" '
+                       f'text-anchor="end">{k}</text>')
+            run_start = None
+            for i, r in enumerate(rows + [None]):
+                solved = r is not None and r.get(f"best_t{k}") == "1"
+                if solved and run_start is None:
+                    run_start = gs[i]
+                if not solved and run_start is not None:
+                    x0 = t.x(run_start)
+                    x1 = min(t.x(gs[i - 1]) + wcell, t.left + t.w)
+                    prim = PRIMS[min(k // 4, 3)]
+                    svg.append(f'<rect x="{x0:.1f}" y="{y + 1}" width="{x1 - x0:.1f}" '
+                               f'height="8" fill="{COLOURS[prim]}"/>')
+                    run_start = None
+        height = t.top + t.h + 30
+    doc = (f'<svg xmlns="http://www.w3.org/2000/svg" width="1000" height="{height}" '
+           'font-family="sans-serif">\n<rect width="100%" height="100%" fill="white"/>\n' +
+           "\n".join(svg) + "\n</svg>\n")
+    tmp = out + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(doc)
+    os.replace(tmp, out)
+    print(f"plot_fitness: {len(rows)} generations ({g0}-{g1}) -> {out}")
+
+
+if __name__ == "__main__":
+    main()
