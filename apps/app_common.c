@@ -16,6 +16,14 @@ void app_die(const char *prog, const char *fmt, ...) {
   exit(2);
 }
 
+int app_int_arg(const char *prog, const char *opt, const char *v, int lo) {
+  char *end;
+  const long x = strtol(v, &end, 10);
+  if (*end || end == v || x < lo || x > 2147483647L)
+    app_die(prog, "%s '%s': expected an integer >= %d", opt, v, lo);
+  return (int)x;
+}
+
 int app_config_arg(appConfigArgs *a, int argc, char **argv, int *i, const char *prog) {
   const char *arg = argv[*i];
   if (!strcmp(arg, "--help-config")) {

@@ -18,6 +18,9 @@ typedef struct appConfigArgs {
   int nsets;
 } appConfigArgs;
 
+/* The integer value of option opt (>= lo); dies naming the option and the value otherwise. */
+int app_int_arg(const char *prog, const char *opt, const char *v, int lo);
+
 /* If argv[*i] is a config option, consumes it (and its value) and returns 1. Handles
  * --help-config by printing the key reference and exiting 0. */
 int app_config_arg(appConfigArgs *a, int argc, char **argv, int *i, const char *prog);

@@ -188,9 +188,18 @@ int main(int argc, char **argv) {
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     if (!strcmp(argv[i], "--mode") && i + 1 < argc) mode = argv[++i];
-    else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
-    else if (!strcmp(argv[i], "--reps") && i + 1 < argc) reps = atoi(argv[++i]);
-    else if (!strcmp(argv[i], "--trials") && i + 1 < argc) trials = atoi(argv[++i]);
+    else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
+      threads = app_int_arg(prog, argv[i], argv[i + 1], 1);
+      i++;
+    }
+    else if (!strcmp(argv[i], "--reps") && i + 1 < argc) {
+      reps = app_int_arg(prog, argv[i], argv[i + 1], 1);
+      i++;
+    }
+    else if (!strcmp(argv[i], "--trials") && i + 1 < argc) {
+      trials = app_int_arg(prog, argv[i], argv[i + 1], 1);
+      i++;
+    }
     else if (!strcmp(argv[i], "--no-baseline")) baseline = 0; /* e.g. for profiling */
     else if (!strcmp(argv[i], "--baseline") && i + 1 < argc) baseline_set = argv[++i];
     else app_die(prog, "unknown or incomplete option '%s' (see the header of apps/bench.c)", argv[i]);

@@ -21,14 +21,6 @@ static void usage(FILE *f) {
              "              [--set section.key=value]... [--help-config]\n");
 }
 
-static int int_arg(const char *opt, const char *v, int lo) {
-  char *end;
-  long x = strtol(v, &end, 10);
-  if (*end || end == v || x < lo || x > 2147483647L)
-    app_die(prog, "%s '%s': expected an integer >= %d", opt, v, lo);
-  return (int)x;
-}
-
 int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
@@ -37,10 +29,10 @@ int main(int argc, char **argv) {
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     const char *a = argv[i];
-    if (!strcmp(a, "--seed") && i + 1 < argc) seed = int_arg(a, argv[++i], 0);
+    if (!strcmp(a, "--seed") && i + 1 < argc) seed = app_int_arg(prog, a, argv[++i], 0);
     else if (!strcmp(a, "--out") && i + 1 < argc) out = argv[++i];
-    else if (!strcmp(a, "--threads") && i + 1 < argc) threads = int_arg(a, argv[++i], 1);
-    else if (!strcmp(a, "--generations") && i + 1 < argc) generations = int_arg(a, argv[++i], 1);
+    else if (!strcmp(a, "--threads") && i + 1 < argc) threads = app_int_arg(prog, a, argv[++i], 1);
+    else if (!strcmp(a, "--generations") && i + 1 < argc) generations = app_int_arg(prog, a, argv[++i], 1);
     else if (!strcmp(a, "--resume")) resume = 1;
     else if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage(stdout), 0;
     else if (a[0] == '-' && a[1]) {

@@ -5,8 +5,11 @@
  *          [--index I] [--set section.key=value]...
  *
  * K = 0..15 (primitive K/4: reach, open, grasp, move; posture and object position K%4).
- * --generation picks the trials' random offsets (default 0); --index the genotype of GENOME
- * (default 0, the first: the best in population.genome). Prints a one-line summary. */
+ * --generation picks the trials' random offsets; --index the genotype of GENOME (a number, or
+ * "last"). Without --index: in a file of per-generation bests (evolve's best.genome, whose
+ * records carry "# generation G") the record of generation G, or the last record and its
+ * generation when --generation is not given either; otherwise the first genotype (the best in
+ * population.genome) with generation 0. Prints the genotype chosen and a one-line summary. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,15 +56,18 @@ int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *genome = NULL, *out = NULL, *stage_name = NULL;
-  int trial = -1, generation = 0, index = 0;
+  int trial = -1, generation = -1, index = -1, index_last = 0;
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     const char *a = argv[i];
-    if (!strcmp(a, "--trial") && i + 1 < argc) trial = atoi(argv[++i]);
+    if (!strcmp(a, "--trial") && i + 1 < argc) trial = app_int_arg(prog, a, argv[++i], 0);
     else if (!strcmp(a, "--out") && i + 1 < argc) out = argv[++i];
     else if (!strcmp(a, "--stage") && i + 1 < argc) stage_name = argv[++i];
-    else if (!strcmp(a, "--generation") && i + 1 < argc) generation = atoi(argv[++i]);
-    else if (!strcmp(a, "--index") && i + 1 < argc) index = atoi(argv[++i]);
+    else if (!strcmp(a, "--generation") && i + 1 < argc) generation = app_int_arg(prog, a, argv[++i], 0);
+    else if (!strcmp(a, "--index") && i + 1 < argc) {
+      if (!strcmp(argv[++i], "last")) index_last = 1;
+      else index = app_int_arg(prog, a, argv[i], 0);
+    }
     else if (a[0] == '-' && a[1]) app_die(prog, "unknown or incomplete option '%s'", a);
     else if (!genome) genome = a;
     else if (!ca.config_path) ca.config_path = a;
@@ -74,6 +80,9 @@ int main(int argc, char **argv) {
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
   stStage stage = cfg.stage_stages == 1 ? ST_STAGE_MAIN : ST_STAGE_SIMPLE;
+  if (!stage_name && cfg.stage_stages == 2)
+    app_die(prog, "%s runs simple-prim then main-prim: give --stage simple or --stage main",
+            ca.config_path);
   if (stage_name) {
     if (!strcmp(stage_name, "simple")) stage = ST_STAGE_SIMPLE;
     else if (!strcmp(stage_name, "main")) stage = ST_STAGE_MAIN;
@@ -82,7 +91,26 @@ int main(int argc, char **argv) {
   char err[1024];
   stGenomeSet set;
   if (st_genome_set_read(genome, ST_GENES_BASE, &set, err, sizeof err)) app_die(prog, "%s", err);
-  if (index < 0 || index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
+  if (index_last) index = set.count - 1;
+  if (index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
+  if (index < 0) { /* not given: see the header comment */
+    int history = set.count > 0 && set.generation[0] >= 0;
+    for (int k = 1; history && k < set.count; k++) history = set.generation[k] > set.generation[k - 1];
+    index = 0;
+    if (history && generation < 0) index = set.count - 1;
+    else if (history) {
+      index = -1;
+      for (int k = 0; k < set.count && index < 0; k++)
+        if (set.generation[k] == generation) index = k;
+      if (index < 0)
+        app_die(prog, "--generation %d: %s has no genotype of that generation (it has %d..%d); "
+                "give --index to replay another generation's genotype with these offsets",
+                generation, genome, set.generation[0], set.generation[set.count - 1]);
+    }
+  }
+  if (generation < 0) generation = set.generation[index] >= 0 ? set.generation[index] : 0;
+  fprintf(stderr, "replay: genotype %d of %s, trial offsets of generation %d\n", index, genome,
+          generation);
   stProtocol *p = NULL;
   if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
   stNetParams np;

@@ -34,7 +34,7 @@ last=$((G - 1))
 for k in $(seq 0 15); do
   "$APPDIR/replay" "$tmp/t1/population.genome" "$tmp/t1/config.ini" --trial $k --generation $last \
     --out "$tmp/trace$k.csv"
-done > "$tmp/replay.txt" 2>&1
+done > "$tmp/replay.txt" 2> "$tmp/replay.err"
 if python3 - "$tmp/replay.txt" "$tmp/t1/fitness.csv" "$tmp/trace15.csv" <<'PY'
 import csv, re, sys
 fp, succ = [0.0] * 4, []
@@ -51,6 +51,28 @@ print("replay F %.6f vs csv %.6f, successes %s vs %s, trace rows %d" % (F, float
 sys.exit(0 if ok else 1)
 PY
 then ok "replay reproduces the best's 16 trials and fitness"; else ko "replay" "$(tail -3 "$tmp/replay.txt")"; fi
+
+# replay picks from best.genome (one record per generation): the last record with its own
+# generation's offsets by default, or the record of --generation G; the same genotype as the
+# population's best at the last generation (elitism keeps it first), so the same summary line
+"$APPDIR/replay" "$tmp/t1/best.genome" "$tmp/t1/config.ini" --trial 5 > "$tmp/rb1.txt" 2> "$tmp/rb1.err"
+"$APPDIR/replay" "$tmp/t1/best.genome" "$tmp/t1/config.ini" --trial 5 --generation 3 > "$tmp/rb2.txt" 2> "$tmp/rb2.err"
+"$APPDIR/replay" "$tmp/t1/best.genome" "$tmp/t1/config.ini" --trial 5 --index 3 --generation 3 > "$tmp/rb3.txt" 2>/dev/null
+if grep -q "genotype $last of .*offsets of generation $last" "$tmp/rb1.err" &&
+   cmp -s "$tmp/rb1.txt" <(grep '^trial 5 ' "$tmp/replay.txt") &&
+   grep -q "genotype 3 of .*offsets of generation 3" "$tmp/rb2.err" && cmp -s "$tmp/rb2.txt" "$tmp/rb3.txt"; then
+  ok "replay of best.genome picks the record of the generation asked (default: the last)"
+else
+  ko "replay best.genome defaults" "$(cat "$tmp/rb1.err" "$tmp/rb2.err")"
+fi
+"$APPDIR/replay" "$tmp/t1/best.genome" "$tmp/t1/config.ini" --trial 5 --generation 99 > /dev/null 2> "$tmp/rb4.err"; rc1=$?
+"$APPDIR/replay" "$tmp/t1/best.genome" configs/prims.cfg --trial 5 > /dev/null 2> "$tmp/rb5.err"; rc2=$?
+if [ $rc1 != 0 ] && grep -q "generation 99: .* has no genotype of that generation (it has 0..$last)" "$tmp/rb4.err" &&
+   [ $rc2 != 0 ] && grep -q "prims.cfg runs simple-prim then main-prim: give --stage" "$tmp/rb5.err"; then
+  ok "replay refuses a generation the file lacks and a chained config without --stage"
+else
+  ko "replay refusals" "$(cat "$tmp/rb4.err" "$tmp/rb5.err")"
+fi
 
 # SIGKILL at several moments, resume each time; the end must equal the uninterrupted run
 for delay in 0.05 0.3 0.45; do
