@@ -45,6 +45,8 @@ APP_SRC := $(wildcard apps/*.c)
 APP_COMMON := apps/app_common.c
 APP_MAINS := $(filter-out $(APP_COMMON),$(APP_SRC))
 APPS := $(APP_MAINS:apps/%.c=$(APPDIR)/%)
+# diagnostics built from tools/*.c (not part of the protocol; see each file's header)
+TOOLS := $(patsubst tools/%.c,$(BUILD)/%,$(wildcard tools/*.c))
 
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(BUILD)/run_tests
@@ -57,7 +59,7 @@ DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev l
 .PHONY: all deps run test test-only asan valgrind bench install uninstall clean
 .DELETE_ON_ERROR:
 
-all: $(CORE_A) $(CORE_SO) $(FULL_A) $(FULL_SO) $(APPS)
+all: $(CORE_A) $(CORE_SO) $(FULL_A) $(FULL_SO) $(APPS) $(TOOLS)
 
 # installs the Debian packages the project needs; does nothing when they are present
 deps:
@@ -95,6 +97,9 @@ $(FULL_SO): $(CORE_OBJ) $(SIM_OBJ)
 $(APPDIR)/%: apps/%.c $(APP_COMMON) apps/app_common.h $(FULL_A) $(HEADERS)
 	@mkdir -p $(APPDIR)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(APP_COMMON) $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
+
+$(BUILD)/%: tools/%.c $(FULL_A) $(HEADERS)
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
 
 # one CUnit binary; every tests/test_NAME.c defines st_suite_NAME(), found by this list
 $(BUILD)/suites.inc: $(TEST_SRC) | $(BUILD)/obj
