@@ -38,37 +38,18 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* one kinematic trial: sense, think, act; returns a checksum so nothing is optimised away */
-static double kin_trial(stWorld *w, const stConfig *cfg, const stSensorDef *sd, const stNetParams *np, const double *q0,
-                        const double *obj, const double *target, int steps) {
-  stNetState ns;
-  st_net_reset(np, &ns);
-  st_world_reset(w, q0, obj, target);
-  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT], ling[4], sum = 0;
-  st_net_label_input(ST_PRIM_REACH, cfg->network_linguistic_input, ling);
-  int focus_target = 0;
-  for (int t = 0; t < steps; t++) {
-    stQuantities q;
-    st_quantities(w, sd, &q);
-    st_sensor_inputs(w, sd, &q, focus_target, t == 0, ling, 0, in, ST_NET_NIN);
-    st_net_step(np, &ns, in, out);
-    focus_target = st_focus_is_target(sd, out[ST_NET_OUT_FOCUS]);
-    st_world_step_kinematic(w, out);
-    sum += q.d_r + w->contacts.arm_table;
-  }
-  return sum;
-}
-
-/* one dynamic trial: posture, object position and word of a primitive */
-static double dyn_trial(stWorld *w, const stConfig *cfg, const stSensorDef *sd, const stNetParams *np, const double *q0,
-                        int prim, const double *obj, const double *target, int steps, uint64_t seed) {
+/* one trial (kinematic or dynamic, as the world is): posture, object position and word of a
+ * primitive; sense, think, act; returns a checksum so nothing is optimised away */
+static double bench_trial(stWorld *w, const stConfig *cfg, const stSensorDef *sd, const stNetParams *np, const double *q0,
+                          int prim, const double *obj, const double *target, int steps, uint64_t seed) {
   stNetState ns;
   st_net_reset(np, &ns);
   st_world_set_seed(w, seed);
   st_world_reset(w, q0, obj, target);
   double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT], ling[4], sum = 0;
   st_net_label_input(prim, cfg->network_linguistic_input, ling);
-  /* the main-prim trials' table switch (stage.grasp_table_off_step, move_table_off_step) */
+  /* the main-prim trials' table switch (stage.grasp_table_off_step, move_table_off_step; a
+   * no-op in kinematic mode) */
   const int off = prim == ST_PRIM_GRASP  ? cfg->stage_grasp_table_off_step
                   : prim == ST_PRIM_MOVE ? cfg->stage_move_table_off_step
                                          : -1;
@@ -80,7 +61,7 @@ static double dyn_trial(stWorld *w, const stConfig *cfg, const stSensorDef *sd, 
     st_sensor_inputs(w, sd, &q, focus_target, t == 0, ling, 0, in, ST_NET_NIN);
     st_net_step(np, &ns, in, out);
     focus_target = st_focus_is_target(sd, out[ST_NET_OUT_FOCUS]);
-    st_world_step_dynamic(w, out);
+    st_world_step(w, out);
     sum += q.d_r + w->contacts.arm_table + w->obj[2];
   }
   return sum;
@@ -107,7 +88,7 @@ static double dyn_run(const stConfig *cfg, const stRobot *robot, const stScene *
 #pragma omp for schedule(dynamic, 4)
       for (int t = 0; t < trials; t++) {
         const int prim = t % ST_NPRIM, k = (t / ST_NPRIM) % ST_NPOSTURE;
-        per_trial[t] = dyn_trial(w, cfg, sd, &np[t % ngenome], q0[prim][k], prim, scene->obj_pos[k],
+        per_trial[t] = bench_trial(w, cfg, sd, &np[t % ngenome], q0[prim][k], prim, scene->obj_pos[k],
                                  scene->target[k % 2], steps, (uint64_t)t);
         stDynInfo in;
         st_world_dynamic_info(w, &in);
@@ -257,7 +238,8 @@ int main(int argc, char **argv) {
         w->reference_contacts = reference;
 #pragma omp for schedule(dynamic, 16)
         for (int t = 0; t < trials; t++)
-          per_trial[t] = kin_trial(w, &cfg, &sd, &np[t % NGENOME], q0, scene.obj_pos[t % 4], scene.target[t % 2], steps);
+          per_trial[t] = bench_trial(w, &cfg, &sd, &np[t % NGENOME], q0, ST_PRIM_REACH, scene.obj_pos[t % 4],
+                                     scene.target[t % 2], steps, 0);
         st_world_destroy(w);
       }
     }

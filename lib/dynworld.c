@@ -516,14 +516,14 @@ stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, con
   d->meshes = calloc((size_t)m->ngeom + 1, sizeof *d->meshes);
   if (!w->R || !w->p || !d->gbody || !d->glink || !d->gcom || !d->link_group || !d->link_R ||
       !d->link_p || !d->hinge || !d->angle || !d->vel || !d->saved || !d->geom || !d->meshes) {
-    st__dyn_destroy(w);
+    st_world_destroy(w);
     st__errf(err, errsz, "dynamic world: out of memory");
     return ST_ERR_NOMEM;
   }
   d->world = dWorldCreate();
   d->threading = dThreadingAllocateSelfThreadedImplementation();
   if (!d->threading) {
-    st__dyn_destroy(w);
+    st_world_destroy(w);
     st__errf(err, errsz, "dynamic world: out of memory");
     return ST_ERR_NOMEM;
   }
@@ -542,7 +542,7 @@ stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, con
   d->surface.soft_cfm = def->contact_cfm;
   stStatus st = build(w, d, err, errsz);
   if (st) {
-    st__dyn_destroy(w);
+    st_world_destroy(w);
     return st;
   }
   d->obj_table = 1;
@@ -579,9 +579,6 @@ void st__dyn_destroy(stWorld *w) {
     free(d->meshes);
     free(d);
   }
-  free(w->R);
-  free(w->p);
-  free(w);
 }
 
 /* ---- contacts ---------------------------------------------------------------------------- */

@@ -8,7 +8,8 @@
 
 #include "selftalk/world.h"
 
-/* st_world_destroy / st_world_reset / st_world_update of a world with w->dynamic set. */
+/* st_world_reset / st_world_update of a world with w->dynamic set; st__dyn_destroy frees its
+ * ODE internals (st_world_destroy, which calls it, frees the world itself). */
 void st__dyn_destroy(stWorld *w);
 void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]);
 void st__dyn_update(stWorld *w);

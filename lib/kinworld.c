@@ -117,11 +117,8 @@ nomem:
 
 void st_world_destroy(stWorld *w) {
   if (!w) return;
-  if (w->dynamic) { /* a world of st_world_create_dynamic (lib/dynworld.c) */
-    st__dyn_destroy(w);
-    return;
-  }
-  kinInternal *k = w->internal_;
+  kinInternal *k = w->dynamic ? NULL : w->internal_;
+  if (w->dynamic) st__dyn_destroy(w); /* a world of st_world_create_dynamic (lib/dynworld.c) */
   if (k) {
     for (int i = 0; i < k->ngeom; i++) dGeomDestroy(k->geom[i].g);
     if (k->meshes)
