@@ -156,7 +156,32 @@ static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value
 }
 
 /* cross-key rules; returns the key index blamed and a message, or -1 */
+unsigned st_config_primitive_mask(const stConfig *cfg) {
+  static const char *const names[] = {"reach", "open", "grasp", "move"}; /* ST_PRIM_* order */
+  unsigned mask = 0;
+  const char *s = cfg->stage_primitives;
+  for (;;) {
+    while (*s == ' ' || *s == '\t') s++;
+    size_t len = strcspn(s, ",");
+    size_t end = len;
+    while (end > 0 && (s[end - 1] == ' ' || s[end - 1] == '\t')) end--;
+    int found = -1;
+    for (int p = 0; p < 4; p++)
+      if (end == strlen(names[p]) && !strncmp(s, names[p], end)) found = p;
+    if (found < 0) return 0; /* an unknown or empty name */
+    mask |= 1u << found;
+    if (!s[len]) break;
+    s += len + 1;
+  }
+  return mask;
+}
+
 static int check_rules(const stConfig *c, char *msg, size_t n) {
+  if (!st_config_primitive_mask(c)) {
+    snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
+             "reach,open,grasp,move)", c->stage_primitives);
+    return st_config_find("stage", "primitives");
+  }
   if (c->ga_elites > c->ga_population) {
     snprintf(msg, n, "%d exceeds ga.population = %d (expected elites <= population)", c->ga_elites,
              c->ga_population);

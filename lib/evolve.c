@@ -333,7 +333,7 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
     for (int i = 0; i < gd.population; i++) {
       mean += R.fitness[i] / gd.population;
       if (R.fitness[i] < worst) worst = R.fitness[i];
-      all += R.eval[i].successes == ST_PRIM_TRIALS;
+      all += R.eval[i].successes == R.eval[i].ntrials; /* every trial it is evaluated on */
     }
     const stEvaluation *be = &R.eval[best];
     char row[2048];
@@ -362,10 +362,10 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
       hms(el, e1, sizeof e1);
       hms((R.limit - gen - 1) / rate, e2, sizeof e2);
       fprintf(def->progress,
-              "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/16 all-solved %3d | "
+              "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/%d all-solved %3d | "
               "%.2f gen/s elapsed %s left <= %s\n",
               gen, st_stage_name(stage), R.fitness[best], mean, cfg->fitness_bonus * be->successes,
-              be->successes, all, rate, e1, e2);
+              be->successes, be->ntrials, all, rate, e1, e2);
       fflush(def->progress);
     }
     if (stage_complete) {

@@ -24,6 +24,7 @@ stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, si
   p->net.lambda = cfg->network_lambda;
   p->net.gamma_a = cfg->network_gamma_a;
   p->net.gamma_b = cfg->network_gamma_b;
+  p->primitives = st_config_primitive_mask(cfg);
   if ((st = st_postures_all(p->robot, &p->scene, p->posture, err, errsz))) {
     st_protocol_destroy(p);
     return st;
@@ -242,6 +243,8 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
   for (int i = 0; i < ST_PRIM_TRIALS; i++) {
     stTrialSpec t;
     st_trial_spec(p, stage, generation, i, &t);
+    if (!(p->primitives >> t.primitive & 1u)) continue;
+    e->ntrials++;
     stTrialResult r;
     uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
                                 (uint64_t)individual, (uint64_t)i).key;
@@ -254,8 +257,12 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
     e->successes += r.success;
     e->unstable += r.unstable;
   }
-  for (int k = 0; k < ST_NPRIM; k++)
+  double fp[ST_NPRIM];
+  int nprim = 0;
+  for (int k = 0; k < ST_NPRIM; k++) {
     e->fp[k] = st_primitive_fitness(&p->fitness, bonus[k], sum_sp[k], n[k]);
-  e->fitness = st_harmonic_fitness(&p->fitness, e->fp, ST_NPRIM);
+    if (p->primitives >> k & 1u) fp[nprim++] = e->fp[k];
+  }
+  e->fitness = st_harmonic_fitness(&p->fitness, fp, nprim);
   return ST_OK;
 }

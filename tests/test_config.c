@@ -126,6 +126,10 @@ static void test_config_errors(void) {
   expect_error("[ga]\nelites = 30\n\npopulation = 20\n", ST_ERR_RANGE,
                ":2: key 'ga.elites': 30 exceeds ga.population = 20 (expected elites <= population)");
   expect_error("[ga]\nelites = \n", ST_ERR_PARSE, ":2: key 'ga.elites': '' is not an integer");
+  expect_error("[stage]\nprimitives = reach,grasp,lift\n", ST_ERR_RANGE,
+               ":2: key 'stage.primitives': 'reach,grasp,lift' is not a list of primitives "
+               "(expected a comma-separated subset of reach,open,grasp,move)");
+  expect_error("[stage]\n\nprimitives = grasp,,move\n", ST_ERR_RANGE, ":3: key 'stage.primitives'");
 
   stConfig c;
   char err[512];

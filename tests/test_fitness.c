@@ -3,6 +3,7 @@
  * eq. 2.2-2.12 (exp values from a calculator: e^-1 = 0.36787944117144233,
  * e^-0.5 = 0.6065306597126334, e^-2 = 0.1353352832366127). */
 #include <math.h>
+#include <string.h>
 
 #include "selftalk/trial.h"
 #include "test_util.h"
@@ -232,6 +233,72 @@ static void test_score_move(void) {
   }
 }
 
+/* stage.primitives: a subset evaluates only its primitives' trials, each scored exactly as in
+ * the full set (same index, offsets, key), and F is the harmonic mean over the subset alone:
+ * for one primitive F = F_p, for two F = 2 / (1/F_a + 1/F_b) (eq. 2.2 with n = 2). Kinematic
+ * stage on random networks, so that the test is quick. */
+static void test_primitive_subset(void) {
+  stConfig c;
+  st_config_default(&c);
+  stProtocol *full = NULL, *grasp = NULL, *two = NULL;
+  char err[512] = "";
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &full, err, sizeof err), ST_OK);
+  strcpy(c.stage_primitives, "grasp");
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &grasp, err, sizeof err), ST_OK);
+  strcpy(c.stage_primitives, " move , reach");
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &two, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(full->primitives, 15u);
+  CU_ASSERT_EQUAL(grasp->primitives, 1u << ST_PRIM_GRASP);
+  CU_ASSERT_EQUAL(two->primitives, (1u << ST_PRIM_REACH) | (1u << ST_PRIM_MOVE));
+  stWorkspace ws = {0};
+  /* an evolved genotype (seed 3's simple-prim population: every F_p well above 0) and two
+   * random ones (most F_p negative, so the harmonic mean clamps them to fp_min) */
+  stGenomeSet evolved;
+  CU_ASSERT_EQUAL_FATAL(st_genome_set_read("data/evolved/simple_prim_s3.genome",
+                                           st_arch_ngenes(ST_ARCH_BASE), &evolved, err, sizeof err), ST_OK);
+  for (int ind = 0; ind < 3; ind++) {
+    stRng rng = st_rng_keyed(7, ST_RNG_USER, 0, (uint64_t)ind, 0);
+    stGenome g;
+    if (ind == 0) g = evolved.genome[0];
+    else st_genome_random(&g, st_arch_ngenes(ST_ARCH_BASE), &rng);
+    stNetParams np;
+    CU_ASSERT_EQUAL_FATAL(st_net_decode(NULL, ST_ARCH_BASE, &g, &np, err, sizeof err), ST_OK);
+    stEvaluation ef, eg, e2;
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(full, &ws, ST_STAGE_SIMPLE, 5, ind, &np, &ef, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(grasp, &ws, ST_STAGE_SIMPLE, 5, ind, &np, &eg, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(two, &ws, ST_STAGE_SIMPLE, 5, ind, &np, &e2, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(ef.ntrials, 16);
+    CU_ASSERT_EQUAL(eg.ntrials, 4);
+    CU_ASSERT_EQUAL(e2.ntrials, 8);
+    CU_ASSERT_EQUAL(eg.fp[ST_PRIM_GRASP], ef.fp[ST_PRIM_GRASP]); /* bit for bit */
+    CU_ASSERT_EQUAL(eg.fp[ST_PRIM_REACH], 0.0);
+    CU_ASSERT_EQUAL(eg.fp[ST_PRIM_MOVE], 0.0);
+    /* F_p below fitness.fp_min (0.001) counts as fp_min (SPEC §7); random networks get there */
+    const double fg = fmax(ef.fp[ST_PRIM_GRASP], 0.001);
+    const double fr = fmax(ef.fp[ST_PRIM_REACH], 0.001), fm = fmax(ef.fp[ST_PRIM_MOVE], 0.001);
+    CU_ASSERT_DOUBLE_EQUAL(eg.fitness, fg, 1e-12 * fg);
+    CU_ASSERT_DOUBLE_EQUAL(e2.fitness, 2.0 / (1.0 / fr + 1.0 / fm), 1e-12 * (fr + fm));
+    int sg = 0, s2 = 0;
+    for (int t = 0; t < ST_PRIM_TRIALS; t++) {
+      const int prim = t / ST_NPOSTURE;
+      CU_ASSERT_EQUAL(eg.success[t], prim == ST_PRIM_GRASP ? ef.success[t] : 0);
+      CU_ASSERT_EQUAL(e2.success[t], prim == ST_PRIM_REACH || prim == ST_PRIM_MOVE ? ef.success[t] : 0);
+      sg += eg.success[t];
+      s2 += e2.success[t];
+    }
+    CU_ASSERT_EQUAL(eg.successes, sg);
+    CU_ASSERT_EQUAL(e2.successes, s2);
+    if (ind == 0) { /* the evolved one: the subset values are real harmonic means */
+      CU_ASSERT(ef.successes == 16 && fr > 50 && fm > 50 && fg > 50);
+    }
+  }
+  st_genome_set_free(&evolved);
+  st_workspace_free(&ws);
+  st_protocol_destroy(full);
+  st_protocol_destroy(grasp);
+  st_protocol_destroy(two);
+}
+
 void st_suite_fitness(void) {
   ST_ADD_SUITE("fitness");
   ST_ADD_TEST(test_step_fitness);
@@ -243,4 +310,5 @@ void st_suite_fitness(void) {
   ST_ADD_TEST(test_score_early_failure);
   ST_ADD_TEST(test_score_grasp);
   ST_ADD_TEST(test_score_move);
+  ST_ADD_TEST(test_primitive_subset);
 }

@@ -97,6 +97,7 @@ extern "C" {
   REAL(fitness, move_lift_dist, 0.8, 0.0, 1.0, "eq. 2.12: weight of exp(-decay d_m) while lifted") \
   ENUM(stage, stages, 0, "simple_prim|main_prim|prims", "what evolve runs: simple-prim, main-prim, or both in sequence (thesis 2.7-2.8)") \
   STR(stage, init_population, "", "population file to start from (main_prim); empty: random genotypes") \
+  STR(stage, primitives, "reach,open,grasp,move", "primitives whose 4 trials are evaluated, comma-separated; F is the harmonic mean over these (diagnostic: the thesis evaluates all four)") \
   INT(stage, simple_steps, 60, 1, 100000, "simple-prim trial length, control steps (3 s)") \
   INT(stage, main_reach_steps, 100, 1, 100000, "main-prim reach trial length (5 s)") \
   INT(stage, main_open_steps, 60, 1, 100000, "main-prim open trial length (3 s)") \
@@ -212,6 +213,11 @@ int st_config_write(FILE *f, const stConfig *cfg);
 
 /* Writes the key reference (section, key, type, default, range, help). */
 void st_config_help(FILE *f);
+
+/* Primitives named by stage.primitives, as a bit mask: bit p set for primitive p in the order
+ * reach, open, grasp, move (ST_PRIM_* of fitness.h). 0 if the list is empty or names anything
+ * else (st_config_load and st_config_validate reject such a config). */
+unsigned st_config_primitive_mask(const stConfig *cfg);
 
 /* Choice name of an ENUM key's value, e.g. st_config_enum_name("network", "arch", 1) = "A". */
 const char *st_config_enum_name(const char *section, const char *name, int value);

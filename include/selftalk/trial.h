@@ -32,6 +32,7 @@ typedef struct stProtocol {
   stFitnessDef fitness;
   stNetDef net;
   double posture[ST_NPRIM][ST_NPOSTURE][ST_NDOF];
+  unsigned primitives; /* stage.primitives: bit p set = primitive p's trials are evaluated */
 } stProtocol;
 
 /* Loads the robot, computes the 16 postures. */
@@ -150,15 +151,18 @@ stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t
 
 /* An individual's score over all trials of a stage. */
 typedef struct stEvaluation {
-  double fitness;              /* harmonic mean of fp */
-  double fp[ST_NPRIM];         /* F_p */
+  double fitness;              /* harmonic mean of fp over the evaluated primitives */
+  double fp[ST_NPRIM];         /* F_p (0 for a primitive not evaluated) */
+  int ntrials;                 /* trials evaluated: 16 unless stage.primitives names fewer */
   int successes;               /* trials succeeded */
   uint8_t success[ST_PRIM_TRIALS];
   int unstable;                /* trials that diverged */
 } stEvaluation;
 
-/* Evaluates a network on the 16 trials of a stage in a generation. individual keys the
- * dynamic solver's generator. */
+/* Evaluates a network on the 16 trials of a stage in a generation (only those of the
+ * primitives in p->primitives; a trial keeps its index, offsets and generator key, so a subset
+ * scores each trial exactly as the full set does). individual keys the dynamic solver's
+ * generator. */
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, stEvaluation *e, char *err,
                            size_t errsz);
