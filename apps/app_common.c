@@ -57,6 +57,6 @@ void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog)
   char err[1024];
   st_config_default(cfg);
   if (a->config_path && st_config_load(a->config_path, cfg, err, sizeof err)) app_die(prog, "%s", err);
-  for (int i = 0; i < a->nsets; i++)
-    if (st_config_set(cfg, a->sets[i], err, sizeof err)) app_die(prog, "%s", err);
+  if (st_config_set_all(cfg, (const char *const *)a->sets, a->nsets, err, sizeof err))
+    app_die(prog, "%s", err);
 }

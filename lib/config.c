@@ -392,7 +392,7 @@ stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz
   return L.status;
 }
 
-stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz) {
+static stStatus set_one(stConfig *cfg, const char *assignment, int cross, char *err, size_t errsz) {
   const char *eq = strchr(assignment, '=');
   const char *dot = strchr(assignment, '.');
   if (!eq || !dot || dot > eq) {
@@ -417,13 +417,34 @@ stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t 
   }
   char msg[512];
   stStatus st = set_value(cfg, &g_keys[i], eq + 1, msg, sizeof msg);
-  if (!st) {
+  if (!st && cross) {
     int k = check_rules(cfg, msg, sizeof msg);
     if (k >= 0) st = ST_ERR_RANGE, i = k;
   }
   if (st) st__errf(err, errsz, "--set %s: key '%s.%s': %s", assignment, g_keys[i].section,
                    g_keys[i].name, msg);
   return st;
+}
+
+stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz) {
+  return set_one(cfg, assignment, 1, err, errsz);
+}
+
+stStatus st_config_set_all(stConfig *cfg, const char *const *assignments, int n, char *err,
+                           size_t errsz) {
+  for (int i = 0; i < n; i++) {
+    stStatus st = set_one(cfg, assignments[i], 0, err, errsz);
+    if (st) return st;
+  }
+  /* cross-key rules once all overrides are in, so that their order does not matter */
+  char msg[512];
+  int k = check_rules(cfg, msg, sizeof msg);
+  if (k >= 0) {
+    st__errf(err, errsz, "after the --set options: key '%s.%s': %s", g_keys[k].section,
+             g_keys[k].name, msg);
+    return ST_ERR_RANGE;
+  }
+  return ST_OK;
 }
 
 static void format_value(const stConfig *cfg, const stConfigKey *k, char *buf, size_t n) {

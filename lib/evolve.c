@@ -329,8 +329,9 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
     st_ga_tell(R.ga, R.fitness);
     const int best = st_ga_ranked(R.ga, 0);
     double mean = 0, worst = INFINITY;
-    int all = 0;
+    int all = 0, unstable = 0;
     for (int i = 0; i < gd.population; i++) {
+      unstable += R.eval[i].unstable;
       mean += R.fitness[i] / gd.population;
       if (R.fitness[i] < worst) worst = R.fitness[i];
       all += R.eval[i].successes == R.eval[i].ntrials; /* every trial it is evaluated on */
@@ -361,11 +362,14 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
       char e1[32], e2[32];
       hms(el, e1, sizeof e1);
       hms((R.limit - gen - 1) / rate, e2, sizeof e2);
+      /* trials the simulation gave up on (scored as failures): rare, but a user must see them */
+      char unst[48] = "";
+      if (unstable) snprintf(unst, sizeof unst, " | %d unstable trials", unstable);
       fprintf(def->progress,
               "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/%d all-solved %3d | "
-              "%.2f gen/s elapsed %s left <= %s\n",
+              "%.2f gen/s elapsed %s left <= %s%s\n",
               gen, st_stage_name(stage), R.fitness[best], mean, cfg->fitness_bonus * be->successes,
-              be->successes, be->ntrials, all, rate, e1, e2);
+              be->successes, be->ntrials, all, rate, e1, e2, unst);
       fflush(def->progress);
     }
     if (stage_complete) {

@@ -102,6 +102,18 @@ else
   grep -q "config.ini differs" "$tmp/diff.log" && ok "resume with another config refused" || ko "resume refused" "$(cat "$tmp/diff.log")"
 fi
 
+# trials the simulation gives up on are reported: with a speed limit of 1 mm/s every one of the
+# 4 genotypes x 4 grasp trials diverges (the --set options also check population-dependent
+# rules only once all are in: population=4 comes before elites=1)
+"$EV" configs/main_prim.cfg --generations 1 --threads 1 --out "$tmp/un" --set ga.population=4 \
+  --set ga.elites=1 --set ga.parents=2 --set ga.success_genotypes=1 --set stage.primitives=grasp \
+  --set dynamics.unstable_speed=0.001 > "$tmp/un.log" 2>&1
+if grep -q '^gen    0 .* solves  0/4 .*| 16 unstable trials$' "$tmp/un.log"; then
+  ok "unstable trials counted in the progress line; --set order free"
+else
+  ko "unstable trials" "$(cat "$tmp/un.log")"
+fi
+
 # bad input, refused before any work (no output directory appears)
 printf '[stage]\nstages = simple_prim\n[ga]\nelites = 200\n' > "$tmp/bad.cfg"
 expect() { # NAME NEEDLE DIR CMD...

@@ -151,6 +151,18 @@ static void test_config_set_errors(void) {
   ST_ASSERT_CONTAINS(err, "key 'ga.mutation_rate': -1 is out of range");
   CU_ASSERT_EQUAL(st_config_set(&c, "ga.population=5", err, sizeof err), ST_ERR_RANGE);
   ST_ASSERT_CONTAINS(err, "key 'ga.elites': 10 exceeds ga.population = 5");
+  /* several overrides: cross-key rules once at the end, in any order */
+  st_config_default(&c);
+  const char *sets[] = {"ga.population=4", "ga.elites=1", "ga.parents=2", "ga.success_genotypes=1"};
+  CU_ASSERT_EQUAL(st_config_set_all(&c, sets, 4, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(c.ga_population, 4);
+  CU_ASSERT_EQUAL(c.ga_elites, 1);
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(st_config_set_all(&c, sets, 2, err, sizeof err), ST_ERR_RANGE); /* parents 20 */
+  ST_ASSERT_CONTAINS(err, "after the --set options: key 'ga.parents': 20 exceeds ga.population = 4");
+  const char *bad[] = {"ga.population=4", "ga.elites=x"};
+  CU_ASSERT_EQUAL(st_config_set_all(&c, bad, 2, err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, "--set ga.elites=x: key 'ga.elites': 'x' is not an integer");
   /* a config built in code is checked by validate */
   st_config_default(&c);
   c.network_lambda = -3;

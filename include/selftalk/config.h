@@ -202,8 +202,13 @@ void st_config_default(stConfig *cfg);
  * malformed or out-of-range values and inconsistent combinations, naming file and line. */
 stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz);
 
-/* Applies one "section.key=value" override (the --set of every app). */
+/* Applies one "section.key=value" override and checks the cross-key rules. */
 stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz);
+
+/* Applies n overrides in order (the --set options of every app), then checks the cross-key
+ * rules once, so that e.g. ga.elites=1 and ga.population=4 are accepted in either order. */
+stStatus st_config_set_all(stConfig *cfg, const char *const *assignments, int n, char *err,
+                           size_t errsz);
 
 /* Checks ranges and cross-key consistency of a config built in code. */
 stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz);
