@@ -155,9 +155,10 @@ static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value
   }
 }
 
-/* cross-key rules; returns the key index blamed and a message, or -1 */
 unsigned st_config_primitive_mask(const stConfig *cfg) {
-  static const char *const names[] = {"reach", "open", "grasp", "move"}; /* ST_PRIM_* order */
+  /* ST_PRIM_* order; spelled here because the config reader is in the simulator-free core,
+   * without fitness.h's st_primitive_name */
+  static const char *const names[] = {"reach", "open", "grasp", "move"};
   unsigned mask = 0;
   const char *s = cfg->stage_primitives;
   for (;;) {
@@ -166,7 +167,7 @@ unsigned st_config_primitive_mask(const stConfig *cfg) {
     size_t end = len;
     while (end > 0 && (s[end - 1] == ' ' || s[end - 1] == '\t')) end--;
     int found = -1;
-    for (int p = 0; p < 4; p++)
+    for (int p = 0; p < (int)(sizeof names / sizeof names[0]); p++)
       if (end == strlen(names[p]) && !strncmp(s, names[p], end)) found = p;
     if (found < 0) return 0; /* an unknown or empty name */
     mask |= 1u << found;
@@ -176,6 +177,7 @@ unsigned st_config_primitive_mask(const stConfig *cfg) {
   return mask;
 }
 
+/* cross-key rules; returns the key index blamed and a message, or -1 */
 static int check_rules(const stConfig *c, char *msg, size_t n) {
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "

@@ -236,7 +236,7 @@ static void test_score_move(void) {
 /* stage.primitives: a subset evaluates only its primitives' trials, each scored exactly as in
  * the full set (same index, offsets, key), and F is the harmonic mean over the subset alone:
  * for one primitive F = F_p, for two F = 2 / (1/F_a + 1/F_b) (eq. 2.2 with n = 2). Kinematic
- * stage on random networks, so that the test is quick. */
+ * stage, so that the test is quick. */
 static void test_primitive_subset(void) {
   stConfig c;
   st_config_default(&c);
