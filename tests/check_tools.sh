@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # tools/: runs_summary.py and plot_fitness.py on hand-made fitness.csv files whose answers are
-# known (which generation completes each stage, how many solved spans the plot draws).
+# known (which generation completes each stage, how many solved spans the plot draws), and
+# grasp_probe's trace against free fall worked out by hand.
 set -u
 pass=0 fail=0
 ok() { pass=$((pass + 1)); echo "ok   $1"; }
@@ -57,5 +58,23 @@ python3 tools/plot_fitness.py "$t/bad.csv" >/dev/null 2>"$t/err"; rc=$?
 [ $rc != 0 ] && grep -q "bad.csv: expected a fitness.csv" "$t/err" && ok "plot_fitness: wrong columns refused, naming the file" || bad "plot_fitness bad csv rc=$rc"
 python3 tools/runs_summary.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
 [ $rc != 0 ] && grep -q "nope/fitness.csv" "$t/err" && ok "runs_summary: missing run refused, naming the file" || bad "runs_summary missing rc=$rc"
+# grasp_probe --trace: a hand held 5 cm above the ball that never closes leaves it alone, so once
+# the table collision goes off after step 39 the ball free-falls by ODE's semi-implicit Euler,
+# g h^2 n (n + 1) / 2 after n sub-steps of h = 0.01 s: 0.01471 m after step 40 (n = 5), 0.05396 m
+# after step 41 (n = 10), when the centre is 3.5 cm under its resting height and the trial ends
+# (42 steps, not held).
+gp="${BUILD:-build}/grasp_probe"
+out=$("$gp" --trace 0.05,0,0,0 --close-step 80 --thumb-flex 0 --finger-flex 0 2>&1)
+z() { echo "$out" | awk -v s="$1" '$1 == s && $2 == "ball" { print $5 }'; }
+if awk -v r="$(z 39)" -v a="$(z 40)" -v b="$(z 41)" 'BEGIN {
+     g = 9.81 * 0.01 * 0.01 / 2; d1 = r - g * 30 - a; d2 = r - g * 110 - b;
+     exit !(r != "" && d1 < 2e-4 && d1 > -2e-4 && d2 < 2e-4 && d2 > -2e-4) }' &&
+   echo "$out" | grep -q "^trial 0: success 0, 42 steps$"; then
+  ok "grasp_probe: untouched ball free-falls from step 40 and the trial ends at 42 steps"
+else
+  bad "grasp_probe free fall: $(echo "$out" | sed -n '40,43p')"
+fi
+"$gp" --trace 0,0,2,0 >/dev/null 2>"$t/err"; rc=$?
+[ $rc = 2 ] && grep -q "expected GAP,DX,OPPOSE,K" "$t/err" && ok "grasp_probe: bad --trace refused" || bad "grasp_probe bad trace rc=$rc"
 echo "check_tools: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -3,28 +3,41 @@
  * ball and closing the hand? A diagnostic for the fitness landscape of the grasp primitive
  * (data/evolved/README.md), not part of the protocol.
  *
- *   build/grasp_probe [section.key=value]...
+ *   build/grasp_probe [OPTION]... [section.key=value]...
+ *     --dy M            palm offset along world y from the ball centre, m (default 0)
+ *     --close-step N    close the hand from this step on at the latest (default 30)
+ *     --thumb-flex Y    thumb flexion command while closing, 0..1 (default 1)
+ *     --finger-flex Y   finger flexion command while closing, 0..1 (default 1)
+ *     --trace GAP,DX,OPPOSE,K   run only grasp trial K (0..3) with these values and print
+ *                       every step: ball centre, palm and tips relative to it, touch sensors
  *
  * For each of the four main-prim grasp trials (generation 0 offsets) and each combination of
  * palm height above the ball top (gap), palm offset along world x from the ball centre (dx),
  * and thumb opposition, the controller: inverse kinematics once, palm centre to (ball x + dx,
- * ball y, ball top + gap) with the palm facing down, held for the whole trial; the thumb turned
- * to the opposition at once; thumb and fingers closed at full speed once the palm is within
- * 1 cm of its goal (or from step 30).
+ * ball y + dy, ball top + gap) with the palm facing down, held for the whole trial; the thumb
+ * turned to the opposition at once; thumb and fingers closed at full speed once the palm is
+ * within 1 cm of its goal (or from --close-step).
  * Scored by the library's own trial scoring (st_trial_run_controller): success = the ball still
  * above the table at the end, 40 steps after its collision with the table goes off.
  * Prints one line per combination (successes, and the steps each trial lasted: 42 means the
  * ball fell within two steps of the table going) and a total. */
+#include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "selftalk/selftalk.h"
 
-#define CLOSE_DIST 0.01 /* the hand closes once the palm is this close to its goal, m ... */
-#define CLOSE_LAST 30    /* ... or from this step on (the table goes at step 40) */
+#define CLOSE_DIST 0.01 /* the hand closes once the palm is this close to its goal, m */
+
+typedef struct probeOptions {
+  double dy, thumb_flex, finger_flex;
+  long close_step;
+} probeOptions;
 
 typedef struct probe {
   const stProtocol *p;
+  const probeOptions *o;
   double gap, dx, oppose;
   int closing;
   double goal[ST_NDOF], pos[3];
@@ -36,7 +49,7 @@ static void probe_reset(void *self, const stTrialSpec *t) {
   static const double normal[3] = {0, 0, 1}, down[3] = {0, 0, -1};
   memcpy(n->goal, t->qhat0, sizeof n->goal);
   n->pos[0] = t->obj[0] + n->dx;
-  n->pos[1] = t->obj[1];
+  n->pos[1] = t->obj[1] + n->o->dy;
   n->pos[2] = t->obj[2] + n->p->scene.obj_radius + n->gap;
   n->closing = 0;
   stIkTarget target = st_ik_target(r->palm_body, n->pos);
@@ -50,58 +63,123 @@ static void probe_act(void *self, const stWorld *w, const stQuantities *q, const
   (void)w, (void)in;
   probe *n = self;
   const double dx = q->palm[0] - n->pos[0], dy = q->palm[1] - n->pos[1], dz = q->palm[2] - n->pos[2];
-  if (dx * dx + dy * dy + dz * dz < CLOSE_DIST * CLOSE_DIST || step >= CLOSE_LAST) n->closing = 1;
+  if (dx * dx + dy * dy + dz * dz < CLOSE_DIST * CLOSE_DIST || step >= n->o->close_step)
+    n->closing = 1;
   for (int k = 0; k < ST_NET_MAX_OUT; k++) out[k] = k < ST_NDOF ? n->goal[k] : 0.0;
   out[ST_DOF_THUMB_OPPOSE] = n->oppose;
-  out[ST_DOF_THUMB_FLEX] = out[ST_DOF_FINGER_FLEX] = n->closing ? 1.0 : 0.0;
+  out[ST_DOF_THUMB_FLEX] = n->closing ? n->o->thumb_flex : 0.0;
+  out[ST_DOF_FINGER_FLEX] = n->closing ? n->o->finger_flex : 0.0;
   out[ST_NET_OUT_FOCUS] = 0.0; /* focus on the object, as grasp trials want */
+}
+
+/* One line per step; positions relative to the ball centre, so "x > 0" is the far side. */
+static void probe_trace(void *ctx, const stTraceStep *s) {
+  (void)ctx;
+  const stQuantities *q = s->q;
+  const double *o = s->world->obj;
+  printf("%3d ball %.4f %.4f %.4f palm %+.4f %+.4f %+.4f thumb %+.4f %+.4f %+.4f little %+.4f "
+         "%+.4f %+.4f middle %+.4f %+.4f %+.4f touch ",
+         s->step, o[0], o[1], o[2], q->palm[0] - o[0], q->palm[1] - o[1], q->palm[2] - o[2],
+         q->tip[0][0] - o[0], q->tip[0][1] - o[1], q->tip[0][2] - o[2], q->tip[4][0] - o[0],
+         q->tip[4][1] - o[1], q->tip[4][2] - o[2], q->tip[2][0] - o[0], q->tip[2][1] - o[1],
+         q->tip[2][2] - o[2]);
+  for (int i = 0; i < ST_NTOUCH; i++) putchar('0' + s->world->contacts.touch_object[i]);
+  printf(" h %.3f S %.4f P %.4f\n", q->h, s->S, s->P);
+}
+
+static void die(const char *fmt, const char *arg) {
+  fputs("grasp_probe: ", stderr);
+  fprintf(stderr, fmt, arg);
+  fputc('\n', stderr);
+  exit(2);
+}
+
+static double number(const char *opt, const char *s, double lo, double hi) {
+  char *end;
+  errno = 0;
+  const double v = s ? strtod(s, &end) : 0.0;
+  if (!s || end == s || *end || errno || !(v >= lo && v <= hi)) {
+    fprintf(stderr, "grasp_probe: %s: '%s' (expected a number in [%g, %g])\n", opt,
+            s ? s : "(missing)", lo, hi);
+    exit(2);
+  }
+  return v;
+}
+
+static int run_trial(const stProtocol *p, stWorkspace *ws, probe *n, int k, stTraceFn trace,
+                     stTrialResult *r) {
+  char err[1024];
+  const stController c = {probe_reset, probe_act, ST_NET_NIN, n};
+  stTrialSpec t;
+  st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_GRASP * ST_NPOSTURE + k, &t);
+  if (st_trial_run_controller(p, ws, &t, &c, 1, r, trace, NULL, err, sizeof err)) {
+    fprintf(stderr, "grasp_probe: %s\n", err);
+    return 1;
+  }
+  return 0;
 }
 
 int main(int argc, char **argv) {
   stConfig cfg;
   char err[1024];
+  probeOptions o = {0.0, 1.0, 1.0, 30};
+  const char *trace = NULL;
   st_config_default(&cfg);
-  for (int i = 1; i < argc; i++)
-    if (st_config_set(&cfg, argv[i], err, sizeof err)) {
-      fprintf(stderr, "grasp_probe: %s\n", err);
-      return 2;
-    }
-  stProtocol *p = NULL;
-  if (st_protocol_create(&cfg, &p, err, sizeof err)) {
-    fprintf(stderr, "grasp_probe: %s\n", err);
-    return 2;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (!strcmp(a, "--dy")) o.dy = number(a, v, -0.1, 0.1), i++;
+    else if (!strcmp(a, "--close-step")) o.close_step = (long)number(a, v, 0, 80), i++;
+    else if (!strcmp(a, "--thumb-flex")) o.thumb_flex = number(a, v, 0, 1), i++;
+    else if (!strcmp(a, "--finger-flex")) o.finger_flex = number(a, v, 0, 1), i++;
+    else if (!strcmp(a, "--trace")) {
+      if (!v) die("%s: expected GAP,DX,OPPOSE,K", a);
+      trace = v, i++;
+    } else if (a[0] == '-') die("unknown option '%s' (expected --dy, --close-step, --thumb-flex, "
+                                "--finger-flex, --trace or section.key=value)", a);
+    else if (st_config_set(&cfg, a, err, sizeof err)) die("%s", err);
   }
-  static const double gaps[] = {-0.005, 0.005, 0.015};
-  static const double dxs[] = {-0.07, -0.055, -0.04, -0.025, 0.0, 0.02};
-  static const double opposes[] = {0.0, 0.5, 0.8, 1.0};
+  stProtocol *p = NULL;
+  if (st_protocol_create(&cfg, &p, err, sizeof err)) die("%s", err);
   stWorkspace ws = {NULL, NULL};
-  int total = 0, solved = 0;
-  for (size_t gi = 0; gi < sizeof gaps / sizeof *gaps; gi++)
-    for (size_t xi = 0; xi < sizeof dxs / sizeof *dxs; xi++)
-      for (size_t oi = 0; oi < sizeof opposes / sizeof *opposes; oi++) {
-        int ok = 0;
-        char steps[64] = "";
-        for (int k = 0; k < ST_NPOSTURE; k++) {
-          probe n = {p, gaps[gi], dxs[xi], opposes[oi], 0, {0}, {0}};
-          const stController c = {probe_reset, probe_act, ST_NET_NIN, &n};
-          stTrialSpec t;
-          st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_GRASP * ST_NPOSTURE + k, &t);
-          stTrialResult r;
-          if (st_trial_run_controller(p, &ws, &t, &c, 1, &r, NULL, NULL, err, sizeof err)) {
-            fprintf(stderr, "grasp_probe: %s\n", err);
-            return 1;
+  int rc = 0;
+  if (trace) {
+    double gap, dx, oppose;
+    int k;
+    char extra;
+    if (sscanf(trace, "%lf,%lf,%lf,%d%c", &gap, &dx, &oppose, &k, &extra) != 4 || k < 0 ||
+        k >= ST_NPOSTURE || !(oppose >= 0 && oppose <= 1))
+      die("--trace '%s': expected GAP,DX,OPPOSE,K with OPPOSE in 0..1 and K in 0..3", trace);
+    probe n = {p, &o, gap, dx, oppose, 0, {0}, {0}};
+    stTrialResult r;
+    rc = run_trial(p, &ws, &n, k, probe_trace, &r);
+    if (!rc) printf("trial %d: success %d, %ld steps\n", k, r.success, r.steps_run);
+  } else {
+    static const double gaps[] = {-0.005, 0.005, 0.015};
+    static const double dxs[] = {-0.07, -0.055, -0.04, -0.025, 0.0, 0.02};
+    static const double opposes[] = {0.0, 0.5, 0.8, 1.0};
+    int total = 0, solved = 0;
+    for (size_t gi = 0; !rc && gi < sizeof gaps / sizeof *gaps; gi++)
+      for (size_t xi = 0; !rc && xi < sizeof dxs / sizeof *dxs; xi++)
+        for (size_t oi = 0; !rc && oi < sizeof opposes / sizeof *opposes; oi++) {
+          int ok = 0;
+          char steps[64] = "";
+          for (int k = 0; !rc && k < ST_NPOSTURE; k++) {
+            probe n = {p, &o, gaps[gi], dxs[xi], opposes[oi], 0, {0}, {0}};
+            stTrialResult r;
+            if ((rc = run_trial(p, &ws, &n, k, NULL, &r))) break;
+            ok += r.success;
+            const size_t len = strlen(steps);
+            snprintf(steps + len, sizeof steps - len, " %ld%s", r.steps_run, r.success ? "*" : "");
           }
-          ok += r.success;
-          const size_t len = strlen(steps);
-          snprintf(steps + len, sizeof steps - len, " %ld%s", r.steps_run, r.success ? "*" : "");
+          if (rc) break;
+          printf("gap %+.3f dx %+.3f oppose %.1f: %d/4 (steps%s)\n", gaps[gi], dxs[xi],
+                 opposes[oi], ok, steps);
+          total += ST_NPOSTURE;
+          solved += ok;
         }
-        printf("gap %+.3f dx %+.3f oppose %.1f: %d/4 (steps%s)\n", gaps[gi], dxs[xi],
-               opposes[oi], ok, steps);
-        total += ST_NPOSTURE;
-        solved += ok;
-      }
-  printf("grasp_probe: %d of %d grasp trials held the ball\n", solved, total);
+    if (!rc) printf("grasp_probe: %d of %d grasp trials held the ball\n", solved, total);
+  }
   st_workspace_free(&ws);
   st_protocol_destroy(p);
-  return 0;
+  return rc;
 }
