@@ -68,7 +68,10 @@ static const double START_DEG[9] = {0, 0, -40, 30, 0, 90, 80, -30, 0};
 #define CHECK_OPEN_HIGH_FLEX 0.7     /* open k=2,3: thumb and finger flexion at least this */
 #define CHECK_GRASP_MIN_GAP 0.01     /* grasp: palm centre 1-4 cm above the ball top */
 #define CHECK_GRASP_MAX_GAP 0.04
-#define CHECK_GRASP_XY 0.02          /* grasp: palm centre within this of the ball (horiz.) */
+#define CHECK_GRASP_XY 0.02          /* grasp: the palm point grasp_ball_x ahead of the centre
+                                        within this of the ball (horiz.) */
+#define CHECK_GRASP_BALL_X 0.05      /* grasp: |grasp_ball_x| at most this: the ball under the
+                                        palm or the knuckles (the MCP hinges are 4.6 cm ahead) */
 #define CHECK_GRASP_FLEX_LO 0.15     /* grasp k=2,3: partly extended */
 #define CHECK_GRASP_FLEX_HI 0.4
 #define CHECK_MOVE_TOUCHES 3         /* move: touch sensors on the object, at least */
@@ -194,6 +197,7 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k, dou
       q[ST_DOF_FINGER_FLEX] = k < 2 ? PD.open_near_fingers : PD.open_high_flex;
       return ST_OK;
     case ST_PRIM_GRASP:
+      ball[0] = PD.grasp_ball_x;
       ball[2] = rad + PD.grasp_gap;
       if (place_palm_over_ball(r, s, k, ball, q, what, err, errsz)) return ST_ERR_RANGE;
       q[ST_DOF_THUMB_OPPOSE] = k < 2 ? PD.grasp_oppose : PD.grasp_partial_oppose;
@@ -348,10 +352,15 @@ static int check_world(const stRobot *r, const stScene *s, const stWorld *w, int
     case ST_PRIM_GRASP: {
       if (!(p > CHECK_PALM_DOWN)) FAIL("p = %.3f (expected > %.2f: palm down)", p, CHECK_PALM_DOWN);
       if (c->robot_object) FAIL("the hand touches the object");
-      double xy = hdist(palm, obj), gap = palm[2] - top;
+      const double bx = PD.grasp_ball_x; /* along the fingers: the palm frame's +x */
+      if (!(fabs(bx) <= CHECK_GRASP_BALL_X))
+        FAIL("postures.grasp_ball_x = %.3f m (expected within +-%.2f: the hand above the ball)", bx,
+             CHECK_GRASP_BALL_X);
+      const double g[3] = {palm[0] + bx * R[0], palm[1] + bx * R[3], palm[2] + bx * R[6]};
+      double xy = hdist(g, obj), gap = palm[2] - top;
       if (!(xy <= CHECK_GRASP_XY))
-        FAIL("palm centre %.3f m from the ball horizontally (expected <= %.2f)", xy,
-             CHECK_GRASP_XY);
+        FAIL("palm point %.3f m ahead of its centre is %.3f m from the ball horizontally (expected "
+             "<= %.2f)", bx, xy, CHECK_GRASP_XY);
       if (!(gap >= CHECK_GRASP_MIN_GAP && gap <= CHECK_GRASP_MAX_GAP))
         FAIL("palm %.3f m above the ball top (expected %.2f..%.2f)", gap, CHECK_GRASP_MIN_GAP,
              CHECK_GRASP_MAX_GAP);

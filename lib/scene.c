@@ -42,6 +42,7 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
   s->posture.open_high_oppose = c->postures_open_high_oppose;
   s->posture.open_high_flex = c->postures_open_high_flex;
   s->posture.grasp_gap = c->postures_grasp_gap;
+  s->posture.grasp_ball_x = c->postures_grasp_ball_x;
   s->posture.grasp_oppose = c->postures_grasp_oppose;
   s->posture.grasp_partial_oppose = c->postures_grasp_partial_oppose;
   s->posture.grasp_partial_flex = c->postures_grasp_partial_flex;

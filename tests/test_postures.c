@@ -330,6 +330,34 @@ static void test_postures_grasp(void) {
   fixture_close(&f);
 }
 
+/* postures.grasp_ball_x: the ball that far ahead of the palm centre along the fingers, so the
+ * palm centre is 3.5 cm from it horizontally (less the cosine of the palm's small tilt) on the
+ * wrist side, the fingertips on the ball's side; beyond 5 cm the hand is no longer above it */
+static void test_postures_grasp_ball_x(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  f.scene.posture.grasp_ball_x = 0.035;
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    double q[ST_NDOF], pos[3], normal[3];
+    state s;
+    posture_state(&f, ST_PRIM_GRASP, k, q, &s);
+    palm_pose(f.robot, q, pos, normal);
+    const double *obj = f.scene.obj_pos[k], *tip = s.q.tip[ST_TOUCH_MIDDLE];
+    const double bx = obj[0] - pos[0], by = obj[1] - pos[1];
+    CU_ASSERT(hypot(bx, by) >= 0.035 * 0.95 - 0.001 && hypot(bx, by) <= 0.035 + 0.001);
+    CU_ASSERT(bx * (tip[0] - pos[0]) + by * (tip[1] - pos[1]) > 0.0);
+    double gap = pos[2] - (obj[2] + f.scene.obj_radius);
+    CU_ASSERT(gap >= 0.01 && gap <= 0.04);
+    CU_ASSERT(!s.c.arm_table && !s.c.robot_object);
+  }
+  char err[512];
+  double q[ST_NDOF];
+  f.scene.posture.grasp_ball_x = 0.06;
+  CU_ASSERT_EQUAL(st_posture(f.robot, &f.scene, ST_PRIM_GRASP, 0, q, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "postures.grasp_ball_x = 0.060");
+  fixture_close(&f);
+}
+
 static void test_postures_move(void) {
   fixture f;
   CU_ASSERT_FATAL(fixture_open(&f));
@@ -422,6 +450,7 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_postures_reach);
   ST_ADD_TEST(test_postures_open);
   ST_ADD_TEST(test_postures_grasp);
+  ST_ADD_TEST(test_postures_grasp_ball_x);
   ST_ADD_TEST(test_postures_move);
   ST_ADD_TEST(test_posture_check_rejects);
   ST_ADD_TEST(test_posture_errors);

@@ -117,7 +117,8 @@ extern "C" {
   REAL(postures, open_high_gap, 0.04, 0.0, 0.3, "open k=2,3: palm centred this far above the ball top, m") \
   REAL(postures, open_high_oppose, 0.5, 0.0, 1.0, "open k=2,3: thumb opposition, normalised") \
   REAL(postures, open_high_flex, 0.8, 0.0, 1.0, "open k=2,3: thumb and finger flexion (hand almost closed), normalised") \
-  REAL(postures, grasp_gap, 0.03, 0.0, 0.3, "grasp: palm down, centred this far above the ball top, m") \
+  REAL(postures, grasp_gap, 0.03, 0.0, 0.3, "grasp: palm down, this far above the ball top, m") \
+  REAL(postures, grasp_ball_x, 0.0, -0.2, 0.2, "grasp: ball centre ahead of the palm centre along the fingers, m (0: palm centred over the ball; the move posture holds it at move_ball_x)") \
   REAL(postures, grasp_oppose, 0.0, 0.0, 1.0, "grasp k=0,1: thumb opposition (fingers fully extended)") \
   REAL(postures, grasp_partial_oppose, 0.3, 0.0, 1.0, "grasp k=2,3: thumb opposition") \
   REAL(postures, grasp_partial_flex, 0.25, 0.0, 1.0, "grasp k=2,3: thumb and finger flexion (partly extended)") \

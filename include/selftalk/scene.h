@@ -27,6 +27,7 @@ typedef struct stPostureDef {
   double open_high_oppose;
   double open_high_flex;
   double grasp_gap;
+  double grasp_ball_x;
   double grasp_oppose;
   double grasp_partial_oppose;
   double grasp_partial_flex;
