@@ -22,6 +22,7 @@
  * Prints one line per combination (successes, and the steps each trial lasted: 42 means the
  * ball fell within two steps of the table going) and a total. */
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -76,21 +77,27 @@ static void probe_act(void *self, const stWorld *w, const stQuantities *q, const
 static void probe_trace(void *ctx, const stTraceStep *s) {
   (void)ctx;
   const stQuantities *q = s->q;
-  const double *o = s->world->obj;
+  const double *o = s->world->obj, *thumb = q->tip[ST_TOUCH_THUMB],
+               *little = q->tip[ST_TOUCH_LITTLE], *middle = q->tip[ST_TOUCH_MIDDLE];
   printf("%3d ball %.4f %.4f %.4f palm %+.4f %+.4f %+.4f thumb %+.4f %+.4f %+.4f little %+.4f "
          "%+.4f %+.4f middle %+.4f %+.4f %+.4f touch ",
          s->step, o[0], o[1], o[2], q->palm[0] - o[0], q->palm[1] - o[1], q->palm[2] - o[2],
-         q->tip[0][0] - o[0], q->tip[0][1] - o[1], q->tip[0][2] - o[2], q->tip[4][0] - o[0],
-         q->tip[4][1] - o[1], q->tip[4][2] - o[2], q->tip[2][0] - o[0], q->tip[2][1] - o[1],
-         q->tip[2][2] - o[2]);
+         thumb[0] - o[0], thumb[1] - o[1], thumb[2] - o[2], little[0] - o[0], little[1] - o[1],
+         little[2] - o[2], middle[0] - o[0], middle[1] - o[1], middle[2] - o[2]);
   for (int i = 0; i < ST_NTOUCH; i++) putchar('0' + s->world->contacts.touch_object[i]);
   printf(" h %.3f S %.4f P %.4f\n", q->h, s->S, s->P);
 }
 
-static void die(const char *fmt, const char *arg) {
+#if defined(__GNUC__)
+__attribute__((noreturn, format(printf, 1, 2)))
+#endif
+static void die(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
   fputs("grasp_probe: ", stderr);
-  fprintf(stderr, fmt, arg);
+  vfprintf(stderr, fmt, ap);
   fputc('\n', stderr);
+  va_end(ap);
   exit(2);
 }
 
@@ -98,11 +105,8 @@ static double number(const char *opt, const char *s, double lo, double hi) {
   char *end;
   errno = 0;
   const double v = s ? strtod(s, &end) : 0.0;
-  if (!s || end == s || *end || errno || !(v >= lo && v <= hi)) {
-    fprintf(stderr, "grasp_probe: %s: '%s' (expected a number in [%g, %g])\n", opt,
-            s ? s : "(missing)", lo, hi);
-    exit(2);
-  }
+  if (!s || end == s || *end || errno || !(v >= lo && v <= hi))
+    die("%s: '%s' (expected a number in [%g, %g])", opt, s ? s : "(missing)", lo, hi);
   return v;
 }
 
@@ -158,27 +162,27 @@ int main(int argc, char **argv) {
     static const double dxs[] = {-0.07, -0.055, -0.04, -0.025, 0.0, 0.02};
     static const double opposes[] = {0.0, 0.5, 0.8, 1.0};
     int total = 0, solved = 0;
-    for (size_t gi = 0; !rc && gi < sizeof gaps / sizeof *gaps; gi++)
-      for (size_t xi = 0; !rc && xi < sizeof dxs / sizeof *dxs; xi++)
-        for (size_t oi = 0; !rc && oi < sizeof opposes / sizeof *opposes; oi++) {
+    for (size_t gi = 0; gi < sizeof gaps / sizeof *gaps; gi++)
+      for (size_t xi = 0; xi < sizeof dxs / sizeof *dxs; xi++)
+        for (size_t oi = 0; oi < sizeof opposes / sizeof *opposes; oi++) {
           int ok = 0;
           char steps[64] = "";
-          for (int k = 0; !rc && k < ST_NPOSTURE; k++) {
+          for (int k = 0; k < ST_NPOSTURE; k++) {
             probe n = {p, &o, gaps[gi], dxs[xi], opposes[oi], 0, {0}, {0}};
             stTrialResult r;
-            if ((rc = run_trial(p, &ws, &n, k, NULL, &r))) break;
+            if ((rc = run_trial(p, &ws, &n, k, NULL, &r))) goto done;
             ok += r.success;
             const size_t len = strlen(steps);
             snprintf(steps + len, sizeof steps - len, " %ld%s", r.steps_run, r.success ? "*" : "");
           }
-          if (rc) break;
           printf("gap %+.3f dx %+.3f oppose %.1f: %d/4 (steps%s)\n", gaps[gi], dxs[xi],
                  opposes[oi], ok, steps);
           total += ST_NPOSTURE;
           solved += ok;
         }
-    if (!rc) printf("grasp_probe: %d of %d grasp trials held the ball\n", solved, total);
+    printf("grasp_probe: %d of %d grasp trials held the ball\n", solved, total);
   }
+done:
   st_workspace_free(&ws);
   st_protocol_destroy(p);
   return rc;
