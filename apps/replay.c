@@ -2,14 +2,16 @@
  * replay: runs one trial of a saved genotype and writes its per-step trace (SPEC §9).
  *
  *   replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] [--generation G]
- *          [--index I] [--set section.key=value]...
+ *          [--index I] [--force OUT=VALUE[@STEP]]... [--set section.key=value]...
  *
  * K = 0..15 (primitive K/4: reach, open, grasp, move; posture and object position K%4).
  * --generation picks the trials' random offsets; --index the genotype of GENOME (a number, or
  * "last"). Without --index: in a file of per-generation bests (evolve's best.genome, whose
  * records carry "# generation G") the record of generation G, or the last record and its
  * generation when --generation is not given either; otherwise the first genotype (the best in
- * population.genome) with generation 0. Prints the genotype chosen and a one-line summary. */
+ * population.genome) with generation 0. Prints the genotype chosen and a one-line summary.
+ * --force overrides network output OUT (0..11 the DOF of SPEC §3, 12 focus) with VALUE (0..1)
+ * from step STEP on (default 0): what the individual would do with, e.g., its thumb opposed. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +20,38 @@
 #include "selftalk/trial.h"
 
 static const char *prog = "replay";
+
+#define MAX_FORCE 32
+
+/* --force OUT=VALUE[@STEP] */
+static stForce force_arg(const char *v) {
+  stForce f = {0, 0.0, 0};
+  char *end;
+  long out = strtol(v, &end, 10);
+  int ok = end != v && *end == '=';
+  if (ok) {
+    const char *s = end + 1;
+    f.value = strtod(s, &end);
+    ok = end != s;
+  }
+  long from = 0;
+  if (ok && *end == '@') {
+    const char *s = end + 1;
+    from = strtol(s, &end, 10);
+    ok = end != s;
+  }
+  if (!ok || *end)
+    app_die(prog, "--force '%s': expected OUT=VALUE or OUT=VALUE@STEP (e.g. 9=1@20)", v);
+  if (out < 0 || out > ST_NET_OUT_FOCUS)
+    app_die(prog, "--force '%s': output %ld (expected 0..%d: the 12 DOF, then focus)", v, out,
+            ST_NET_OUT_FOCUS);
+  if (!(f.value >= 0.0 && f.value <= 1.0))
+    app_die(prog, "--force '%s': value %g (expected 0..1)", v, f.value);
+  if (from < 0 || from > 100000) app_die(prog, "--force '%s': step %ld (expected >= 0)", v, from);
+  f.output = (int)out;
+  f.from_step = (int)from;
+  return f;
+}
 
 typedef struct traceCtx {
   FILE *f;
@@ -56,12 +90,17 @@ int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *genome = NULL, *out = NULL, *stage_name = NULL;
-  int trial = -1, generation = -1, index = -1, index_last = 0;
+  int trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0;
+  stForce force[MAX_FORCE];
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     const char *a = argv[i];
     if (!strcmp(a, "--trial") && i + 1 < argc) trial = app_int_arg(prog, a, argv[++i], 0);
     else if (!strcmp(a, "--out") && i + 1 < argc) out = argv[++i];
+    else if (!strcmp(a, "--force") && i + 1 < argc) {
+      if (nforce == MAX_FORCE) app_die(prog, "--force: at most %d", MAX_FORCE);
+      force[nforce++] = force_arg(argv[++i]);
+    }
     else if (!strcmp(a, "--stage") && i + 1 < argc) stage_name = argv[++i];
     else if (!strcmp(a, "--generation") && i + 1 < argc) generation = app_int_arg(prog, a, argv[++i], 0);
     else if (!strcmp(a, "--index") && i + 1 < argc) {
@@ -75,7 +114,7 @@ int main(int argc, char **argv) {
   }
   if (!genome || !ca.config_path)
     app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] "
-                  "[--generation G] [--index I]");
+                  "[--generation G] [--index I] [--force OUT=VALUE[@STEP]]...");
   if (trial < 0 || trial >= ST_PRIM_TRIALS) app_die(prog, "--trial: expected 0..%d", ST_PRIM_TRIALS - 1);
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
@@ -127,7 +166,9 @@ int main(int argc, char **argv) {
   stTrialResult r;
   uint64_t key = st_rng_keyed((uint64_t)cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
                               (uint64_t)index, (uint64_t)trial).key;
-  if (st_trial_run(p, &ws, &t, &np, key, &r, f ? on_step : NULL, &ctx, err, sizeof err)) app_die(prog, "%s", err);
+  if (st_trial_run_forced(p, &ws, &t, &np, force, nforce, key, &r, f ? on_step : NULL, &ctx, err,
+                          sizeof err))
+    app_die(prog, "%s", err);
   if (f && fclose(f) != 0) app_die(prog, "%s: write error", out);
   /* this trial's share of F_p: the primitive's N_p spans its four trials */
   long n_p = 0;

@@ -205,10 +205,12 @@ stStatus st_trial_run_controller(const stProtocol *p, stWorkspace *ws, const stT
   return ST_OK;
 }
 
-/* the evolved network as a controller */
+/* the evolved network as a controller, some outputs optionally forced */
 typedef struct netCtl {
   const stNetParams *net;
   stNetState state;
+  const stForce *force;
+  int nforce;
 } netCtl;
 
 static void net_reset(void *self, const stTrialSpec *t) {
@@ -221,17 +223,39 @@ static void net_act(void *self, const stWorld *w, const stQuantities *q, const d
                     double *out) {
   (void)w;
   (void)q;
-  (void)step;
   netCtl *c = self;
   st_net_step(c->net, &c->state, in, out);
+  for (int i = 0; i < c->nforce; i++)
+    if (step >= c->force[i].from_step) out[c->force[i].output] = c->force[i].value;
+}
+
+stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                             const stNetParams *net, const stForce *force, int nforce,
+                             uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
+                             char *err, size_t errsz) {
+  if (nforce < 0 || (nforce > 0 && !force))
+    return st__errf(err, errsz, "forced outputs: %d given (expected a list of >= 0)", nforce), ST_ERR_ARG;
+  for (int i = 0; i < nforce; i++) {
+    const stForce *f = &force[i];
+    if (f->output < 0 || f->output > ST_NET_OUT_FOCUS)
+      return st__errf(err, errsz, "forced output %d (expected 0..%d: the 12 DOF, then focus)",
+                      f->output, ST_NET_OUT_FOCUS), ST_ERR_RANGE;
+    if (!(f->value >= 0.0 && f->value <= 1.0))
+      return st__errf(err, errsz, "forced output %d: value %g (expected 0..1)", f->output,
+                      f->value), ST_ERR_RANGE;
+    if (f->from_step < 0)
+      return st__errf(err, errsz, "forced output %d: from step %d (expected >= 0)", f->output,
+                      f->from_step), ST_ERR_RANGE;
+  }
+  netCtl c = {net, {{0}, {0}, {0}, {0}, 0}, force, nforce};
+  stController ctl = {net_reset, net_act, st_net_ninputs(net->arch), &c};
+  return st_trial_run_controller(p, ws, t, &ctl, seed_key, r, trace, ctx, err, errsz);
 }
 
 stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                       const stNetParams *net, uint64_t seed_key, stTrialResult *r, stTraceFn trace,
                       void *ctx, char *err, size_t errsz) {
-  netCtl c = {net, {{0}, {0}, {0}, {0}, 0}};
-  stController ctl = {net_reset, net_act, st_net_ninputs(net->arch), &c};
-  return st_trial_run_controller(p, ws, t, &ctl, seed_key, r, trace, ctx, err, errsz);
+  return st_trial_run_forced(p, ws, t, net, NULL, 0, seed_key, r, trace, ctx, err, errsz);
 }
 
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,

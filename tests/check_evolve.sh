@@ -74,6 +74,19 @@ else
   ko "replay refusals" "$(cat "$tmp/rb4.err" "$tmp/rb5.err")"
 fi
 
+# replay --force: the focus output forced to the target in a reach trial makes the focus wrong
+# at every step, so S = f_f / 5 = (1 - 1) / 5 = 0 throughout (eq. 2.4); a bad value is refused
+"$APPDIR/replay" "$tmp/t1/best.genome" "$tmp/t1/config.ini" --trial 0 --force 12=1 --out "$tmp/forced.csv" > "$tmp/rf1.txt" 2>/dev/null
+"$APPDIR/replay" "$tmp/t1/best.genome" "$tmp/t1/config.ini" --trial 0 --force 9=2 > /dev/null 2> "$tmp/rf2.err"; rc=$?
+if grep -q " sum_S=0.000000 " "$tmp/rf1.txt" &&
+   [ "$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+                  $c["focus_target"] != 1 || $c["S"] != 0 { bad++ } END { print NR - 1, bad + 0 }' "$tmp/forced.csv")" = "60 0" ] &&
+   [ $rc != 0 ] && grep -q "replay: --force '9=2': value 2 (expected 0..1)" "$tmp/rf2.err"; then
+  ok "replay --force overrides an output for the whole trial (focus on the target: S = 0) and refuses a bad value"
+else
+  ko "replay --force" "$(cat "$tmp/rf1.txt" "$tmp/rf2.err")"
+fi
+
 # SIGKILL at several moments, resume each time; the end must equal the uninterrupted run
 for delay in 0.05 0.3 0.45; do
   rm -rf "$tmp/k"

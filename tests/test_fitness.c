@@ -233,6 +233,87 @@ static void test_score_move(void) {
   }
 }
 
+/* trace sink for test_forced_outputs: finger flexion q-hat and S of every step */
+typedef struct forcedTrace {
+  double qf[200], S[200];
+  int n;
+} forcedTrace;
+
+static void forced_on_step(void *ctx, const stTraceStep *s) {
+  forcedTrace *t = ctx;
+  if (t->n < 200) {
+    t->qf[t->n] = s->world->qhat[ST_DOF_FINGER_FLEX];
+    t->S[t->n] = s->S;
+    t->n++;
+  }
+}
+
+/* st_trial_run_forced: a forced output is what the robot does, whatever the network says.
+ * Kinematic mode, finger flexion forced to 1 from the open hand of reach posture 0: each step
+ * moves q-hat by alpha (1 - q) dt / range = 37 x 0.05 / 90 of the remaining (SPEC §3; 37 deg/s
+ * < the 40 deg/s cap, the finger hinges span 90 deg), so 1 - q_n = (1 - q_from) r^(n - from)
+ * with r = 1 - 37 x 0.05 / 90. Forcing the focus output to 1 (target) in a reach trial makes
+ * f_f = 0 and the focus wrong: S = 0 at every step (eq. 2.4). The ranges are in radians, so
+ * q-hat drifts from the law by ~1e-14 per step: tolerance 1e-9 (alpha 40 instead of 37 would
+ * be off by 1e-3 at the first step). */
+static void test_forced_outputs(void) {
+  stConfig c;
+  st_config_default(&c);
+  stProtocol *p = NULL;
+  char err[512] = "";
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
+  stGenomeSet evolved;
+  CU_ASSERT_EQUAL_FATAL(st_genome_set_read("data/evolved/simple_prim_s3.genome",
+                                           st_arch_ngenes(ST_ARCH_BASE), &evolved, err, sizeof err), ST_OK);
+  stNetParams np;
+  CU_ASSERT_EQUAL_FATAL(st_net_decode(NULL, ST_ARCH_BASE, &evolved.genome[0], &np, err, sizeof err), ST_OK);
+  stWorkspace ws = {0};
+  stTrialSpec t;
+  st_trial_spec(p, ST_STAGE_SIMPLE, 5, 0, &t); /* reach, posture 0: fingers fully extended */
+  CU_ASSERT_EQUAL_FATAL(t.primitive, ST_PRIM_REACH);
+  CU_ASSERT_EQUAL(t.qhat0[ST_DOF_FINGER_FLEX], 0.0);
+  const double r = 1.0 - 37.0 * 0.05 / 90.0;
+  stTrialResult res, res0;
+  static forcedTrace free_run, from0, from10, focus;
+  memset(&free_run, 0, sizeof free_run);
+  memset(&from0, 0, sizeof from0);
+  memset(&from10, 0, sizeof from10);
+  memset(&focus, 0, sizeof focus);
+  CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, 1, &res0, forced_on_step, &free_run, err, sizeof err), ST_OK);
+  stForce f0 = {ST_DOF_FINGER_FLEX, 1.0, 0};
+  CU_ASSERT_EQUAL_FATAL(st_trial_run_forced(p, &ws, &t, &np, &f0, 1, 1, &res, forced_on_step, &from0, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(from0.n, t.steps);
+  for (int n = 0; n < from0.n; n++) /* the trace shows the state after step n: n + 1 moves */
+    CU_ASSERT_DOUBLE_EQUAL(from0.qf[n], 1.0 - pow(r, n + 1), 1e-9);
+  /* from step 10: the free run's trajectory bit for bit before, the law from there on */
+  stForce f10 = {ST_DOF_FINGER_FLEX, 1.0, 10};
+  CU_ASSERT_EQUAL_FATAL(st_trial_run_forced(p, &ws, &t, &np, &f10, 1, 1, &res, forced_on_step, &from10, err, sizeof err), ST_OK);
+  for (int n = 0; n < 10; n++) CU_ASSERT_EQUAL(from10.qf[n], free_run.qf[n]);
+  for (int n = 10; n < from10.n; n++)
+    CU_ASSERT_DOUBLE_EQUAL(1.0 - from10.qf[n], (1.0 - free_run.qf[9]) * pow(r, n - 9), 1e-9);
+  /* the evolved reach keeps its fingers open: the forced run really differs */
+  CU_ASSERT(free_run.qf[free_run.n - 1] < 0.5 && from10.qf[from10.n - 1] > 0.6);
+  stForce ff = {ST_NET_OUT_FOCUS, 1.0, 0};
+  CU_ASSERT_EQUAL_FATAL(st_trial_run_forced(p, &ws, &t, &np, &ff, 1, 1, &res, forced_on_step, &focus, err, sizeof err), ST_OK);
+  for (int n = 0; n < focus.n; n++) CU_ASSERT_EQUAL(focus.S[n], 0.0);
+  CU_ASSERT_EQUAL(res.sum_s, 0.0);
+  CU_ASSERT(res0.sum_s > 10.0); /* with its own focus the evolved reach scores */
+  /* nothing forced: st_trial_run exactly */
+  CU_ASSERT_EQUAL_FATAL(st_trial_run_forced(p, &ws, &t, &np, NULL, 0, 1, &res, NULL, NULL, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(res.sum_s, res0.sum_s);
+  CU_ASSERT_EQUAL(res.sum_p, res0.sum_p);
+  /* out of range: refused, naming the output */
+  stForce bad[3] = {{13, 1.0, 0}, {9, 1.5, 0}, {9, 1.0, -1}};
+  for (int i = 0; i < 3; i++) {
+    err[0] = 0;
+    CU_ASSERT_EQUAL(st_trial_run_forced(p, &ws, &t, &np, &bad[i], 1, 1, &res, NULL, NULL, err, sizeof err), ST_ERR_RANGE);
+    CU_ASSERT_PTR_NOT_NULL(strstr(err, i == 0 ? "forced output 13" : "forced output 9"));
+  }
+  st_genome_set_free(&evolved);
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+}
+
 /* stage.primitives: a subset evaluates only its primitives' trials, each scored exactly as in
  * the full set (same index, offsets, key), and F is the harmonic mean over the subset alone:
  * for one primitive F = F_p, for two F = 2 / (1/F_a + 1/F_b) (eq. 2.2 with n = 2). Kinematic
@@ -311,4 +392,5 @@ void st_suite_fitness(void) {
   ST_ADD_TEST(test_score_grasp);
   ST_ADD_TEST(test_score_move);
   ST_ADD_TEST(test_primitive_subset);
+  ST_ADD_TEST(test_forced_outputs);
 }

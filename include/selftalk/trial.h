@@ -149,6 +149,23 @@ stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t
                       const stNetParams *net, uint64_t seed_key, stTrialResult *r, stTraceFn trace,
                       void *ctx, char *err, size_t errsz);
 
+/* One network output forced to a value from a step on, whatever the network says: override
+ * and lesion analyses of an evolved individual (apps/replay --force). The forced value is
+ * what the robot and the scoring see, exactly as if the network had produced it. */
+typedef struct stForce {
+  int output;     /* 0..ST_NET_OUT_FOCUS: 12 desired normalised DOF positions, then focus */
+  double value;   /* 0..1 */
+  int from_step;  /* >= 0 */
+} stForce;
+
+/* st_trial_run with nforce outputs forced (nforce = 0: exactly st_trial_run). Forces are
+ * applied in order, so a later one on the same output wins from its step on. ST_ERR_RANGE for
+ * an output, value or step out of range, naming it. */
+stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                             const stNetParams *net, const stForce *force, int nforce,
+                             uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
+                             char *err, size_t errsz);
+
 /* An individual's score over all trials of a stage. */
 typedef struct stEvaluation {
   double fitness;              /* harmonic mean of fp over the evaluated primitives */
