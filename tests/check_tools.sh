@@ -76,5 +76,23 @@ else
 fi
 "$gp" --trace 0,0,2,0 >/dev/null 2>"$t/err"; rc=$?
 [ $rc = 2 ] && grep -q "expected GAP,DX,OPPOSE,K" "$t/err" && ok "grasp_probe: bad --trace refused" || bad "grasp_probe bad trace rc=$rc"
+# grasp_probe --hand: fingertips in the palm frame. Open hand: iKin's FK puts the index, middle,
+# ring and little tips 0.074, 0.087, 0.076, 0.067 m along the fingers from the arm's end-effector
+# (reference/icub_facts.md §2.3), and the palm centre sits 0.0134 m behind it (gen_icub_urdf.py).
+# Thumb fully opposed, not flexed: it hangs along the palm normal from near the palm centre.
+out=$("$gp" --hand 0,0,0 2>&1)
+tipx() { echo "$out" | awk -v f="$1" '$1 == f { print $2 }'; }
+opp=$("$gp" --hand 1,0,0 2>&1 | awk '$1 == "thumb" { print $2, $3, $4 }')
+if awk -v i="$(tipx index)" -v m="$(tipx middle)" -v r="$(tipx ring)" -v l="$(tipx little)" -v o="$opp" 'BEGIN {
+     split(o, t, " "); e = 0.001; c = 0.0134
+     d[1] = i - 0.074 - c; d[2] = m - 0.087 - c; d[3] = r - 0.076 - c; d[4] = l - 0.067 - c
+     for (k = 1; k <= 4; k++) if (!(d[k] < e && d[k] > -e)) exit 1
+     exit !(t[3] > 0.07 && t[1] < 0.015 && t[1] > -0.015 && t[2] < 0.015 && t[2] > -0.015) }'; then
+  ok "grasp_probe --hand: open-hand tips match iKin's FK; the opposed thumb hangs below the palm centre"
+else
+  bad "grasp_probe --hand: $out / thumb opposed: $opp"
+fi
+"$gp" --hand 1,2,0 >/dev/null 2>"$t/err"; rc=$?
+[ $rc = 2 ] && grep -q "expected OPPOSE,THUMB,FINGERS, each in 0..1" "$t/err" && ok "grasp_probe: bad --hand refused" || bad "grasp_probe bad hand rc=$rc"
 echo "check_tools: $pass passed, $fail failed"
 [ "$fail" = 0 ]

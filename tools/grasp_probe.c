@@ -10,6 +10,9 @@
  *     --finger-flex Y   finger flexion command while closing, 0..1 (default 1)
  *     --trace GAP,DX,OPPOSE,K   run only grasp trial K (0..3) with these values and print
  *                       every step: ball centre, palm and tips relative to it, touch sensors
+ *     --hand OPPOSE,THUMB,FINGERS   print only the five fingertips in the palm frame (+x along
+ *                       the fingers, +y towards the thumb, +z the palm normal, out of the palm)
+ *                       for these normalised hand DOF (forward kinematics, no simulation)
  *
  * For each of the four main-prim grasp trials (generation 0 offsets) and each combination of
  * palm height above the ball top (gap), palm offset along world x from the ball centre (dx),
@@ -88,6 +91,35 @@ static void probe_trace(void *ctx, const stTraceStep *s) {
   printf(" h %.3f S %.4f P %.4f\n", q->h, s->S, s->P);
 }
 
+/* --hand: fingertips in the palm frame; the arm does not matter, so it stays at q-hat 0 */
+static int hand_tips(const stRobot *r, double oppose, double thumb, double fingers) {
+  double qhat[ST_NDOF] = {0};
+  qhat[ST_DOF_THUMB_OPPOSE] = oppose;
+  qhat[ST_DOF_THUMB_FLEX] = thumb;
+  qhat[ST_DOF_FINGER_FLEX] = fingers;
+  double(*R)[9] = malloc(sizeof *R * (size_t)r->nbody);
+  double(*p)[3] = malloc(sizeof *p * (size_t)r->nbody);
+  if (!R || !p) {
+    free(R);
+    free(p);
+    fprintf(stderr, "grasp_probe: out of memory\n");
+    return 1;
+  }
+  st_robot_fk(r, qhat, R, p);
+  static const char *names[ST_NTIP] = {"thumb", "index", "middle", "ring", "little"};
+  const double *Rp = R[r->palm_body], *pc = p[r->palm_body];
+  for (int f = 0; f < ST_NTIP; f++) {
+    const double *t = p[r->tip_body[f]];
+    const double d[3] = {t[0] - pc[0], t[1] - pc[1], t[2] - pc[2]};
+    double l[3]; /* R is world <- palm, row-major: palm coordinates are R^T d */
+    for (int i = 0; i < 3; i++) l[i] = Rp[i] * d[0] + Rp[3 + i] * d[1] + Rp[6 + i] * d[2];
+    printf("%-6s %+.4f %+.4f %+.4f\n", names[f], l[0], l[1], l[2]);
+  }
+  free(R);
+  free(p);
+  return 0;
+}
+
 #if defined(__GNUC__)
 __attribute__((noreturn, format(printf, 1, 2)))
 #endif
@@ -127,7 +159,7 @@ int main(int argc, char **argv) {
   stConfig cfg;
   char err[1024];
   probeOptions o = {0.0, 1.0, 1.0, 30};
-  const char *trace = NULL;
+  const char *trace = NULL, *hand = NULL;
   st_config_default(&cfg);
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -138,15 +170,25 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--trace")) {
       if (!v) die("%s: expected GAP,DX,OPPOSE,K", a);
       trace = v, i++;
+    } else if (!strcmp(a, "--hand")) {
+      if (!v) die("%s: expected OPPOSE,THUMB,FINGERS", a);
+      hand = v, i++;
     } else if (a[0] == '-') die("unknown option '%s' (expected --dy, --close-step, --thumb-flex, "
-                                "--finger-flex, --trace or section.key=value)", a);
+                                "--finger-flex, --trace, --hand or section.key=value)", a);
     else if (st_config_set(&cfg, a, err, sizeof err)) die("%s", err);
   }
   stProtocol *p = NULL;
   if (st_protocol_create(&cfg, &p, err, sizeof err)) die("%s", err);
   stWorkspace ws = {NULL, NULL};
   int rc = 0;
-  if (trace) {
+  if (hand) {
+    double o3[3];
+    char extra;
+    if (sscanf(hand, "%lf,%lf,%lf%c", &o3[0], &o3[1], &o3[2], &extra) != 3 ||
+        !(o3[0] >= 0 && o3[0] <= 1 && o3[1] >= 0 && o3[1] <= 1 && o3[2] >= 0 && o3[2] <= 1))
+      die("--hand '%s': expected OPPOSE,THUMB,FINGERS, each in 0..1", hand);
+    rc = hand_tips(p->robot, o3[0], o3[1], o3[2]);
+  } else if (trace) {
     double gap, dx, oppose;
     int k;
     char extra;
