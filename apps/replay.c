@@ -22,6 +22,7 @@
 static const char *prog = "replay";
 
 #define MAX_FORCE 32
+#define MAX_STEP 100000 /* far beyond any trial; keeps the step an int */
 
 /* --force OUT=VALUE[@STEP] */
 static stForce force_arg(const char *v) {
@@ -47,7 +48,8 @@ static stForce force_arg(const char *v) {
             ST_NET_OUT_FOCUS);
   if (!(f.value >= 0.0 && f.value <= 1.0))
     app_die(prog, "--force '%s': value %g (expected 0..1)", v, f.value);
-  if (from < 0 || from > 100000) app_die(prog, "--force '%s': step %ld (expected >= 0)", v, from);
+  if (from < 0 || from > MAX_STEP)
+    app_die(prog, "--force '%s': step %ld (expected 0..%d)", v, from, MAX_STEP);
   f.output = (int)out;
   f.from_step = (int)from;
   return f;

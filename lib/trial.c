@@ -234,7 +234,8 @@ stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrial
                              uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
                              char *err, size_t errsz) {
   if (nforce < 0 || (nforce > 0 && !force))
-    return st__errf(err, errsz, "forced outputs: %d given (expected a list of >= 0)", nforce), ST_ERR_ARG;
+    return st__errf(err, errsz, "forced outputs: count %d (expected >= 0, and a list when > 0)",
+                    nforce), ST_ERR_ARG;
   for (int i = 0; i < nforce; i++) {
     const stForce *f = &force[i];
     if (f->output < 0 || f->output > ST_NET_OUT_FOCUS)
