@@ -270,6 +270,12 @@ void st_robot_fk_angles(const stRobot *r, const double *restrict angle, double (
   }
 }
 
+void st_robot_point_local(const double R[9], const double p[3], const double world[3],
+                          double local[3]) {
+  const double d[3] = {world[0] - p[0], world[1] - p[1], world[2] - p[2]};
+  for (int i = 0; i < 3; i++) local[i] = R[i] * d[0] + R[3 + i] * d[1] + R[6 + i] * d[2];
+}
+
 void st_robot_fk(const stRobot *r, const double *qhat, double (*R)[9], double (*p)[3]) {
   double angle[256];
   double *a = r->nbody <= 256 ? angle : malloc(sizeof(double) * (size_t)r->nbody);

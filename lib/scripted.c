@@ -133,10 +133,7 @@ static double norm3(const double *a, const double *b) {
 static void point_in_palm(const stScripted *s, double (*R)[9], double (*x)[3], const double *pt,
                           double *out) {
   const int pb = s->p->robot->palm_body;
-  const double *Rp = R[pb];
-  double d[3];
-  for (int i = 0; i < 3; i++) d[i] = pt[i] - x[pb][i];
-  for (int i = 0; i < 3; i++) out[i] = Rp[i] * d[0] + Rp[3 + i] * d[1] + Rp[6 + i] * d[2];
+  st_robot_point_local(R[pb], x[pb], pt, out);
 }
 
 static void ball_in_palm(const stScripted *s, const stWorld *w, double *b) {

@@ -196,6 +196,20 @@ static void test_quantities(void) {
   stQuantities q;
   st_quantities(w, &sd, &q);
   const double *palm = w->p[r->palm_body];
+  /* st_robot_point_local undoes st_world_point: a palm-frame point taken to the world and back
+   * is the point again, and the palm origin is (0, 0, 0) in its own frame */
+  {
+    const int b = r->palm_body;
+    const double local[3] = {0.03, -0.02, 0.05};
+    double world[3], back[3], origin[3];
+    st_world_point(w, b, local, world);
+    st_robot_point_local(w->R[b], w->p[b], world, back);
+    st_robot_point_local(w->R[b], w->p[b], palm, origin);
+    for (int i = 0; i < 3; i++) {
+      CU_ASSERT_DOUBLE_EQUAL(back[i], local[i], 1e-12);
+      CU_ASSERT_DOUBLE_EQUAL(origin[i], 0.0, 1e-15);
+    }
+  }
   /* place the object so the reach point (9.5 cm above it) is (3, 0, 4) cm from the palm: d_r 5 cm */
   double obj[3] = {palm[0] + 0.03, palm[1], palm[2] + 0.04 - 0.095};
   double target[3] = {palm[0], palm[1] - 0.12, palm[2] + 0.05}; /* 13 cm from the palm */

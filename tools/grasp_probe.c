@@ -107,12 +107,9 @@ static int hand_tips(const stRobot *r, double oppose, double thumb, double finge
   }
   st_robot_fk(r, qhat, R, p);
   static const char *names[ST_NTIP] = {"thumb", "index", "middle", "ring", "little"};
-  const double *Rp = R[r->palm_body], *pc = p[r->palm_body];
   for (int f = 0; f < ST_NTIP; f++) {
-    const double *t = p[r->tip_body[f]];
-    const double d[3] = {t[0] - pc[0], t[1] - pc[1], t[2] - pc[2]};
-    double l[3]; /* R is world <- palm, row-major: palm coordinates are R^T d */
-    for (int i = 0; i < 3; i++) l[i] = Rp[i] * d[0] + Rp[3 + i] * d[1] + Rp[6 + i] * d[2];
+    double l[3];
+    st_robot_point_local(R[r->palm_body], p[r->palm_body], p[r->tip_body[f]], l);
     printf("%-6s %+.4f %+.4f %+.4f\n", names[f], l[0], l[1], l[2]);
   }
   free(R);

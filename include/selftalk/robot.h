@@ -86,6 +86,10 @@ void st_robot_fk(const stRobot *r, const double *qhat, double (*R)[9], double (*
  * for dynamic-mode readings and tests where coupled joints differ. */
 void st_robot_fk_angles(const stRobot *r, const double *angle, double (*R)[9], double (*p)[3]);
 
+/* A world point in the frame of a body at pose (R, p) from st_robot_fk: R^T (world - p). */
+void st_robot_point_local(const double R[9], const double p[3], const double world[3],
+                          double local[3]);
+
 /* Joint angle of every body (rad, 0 for fixed joints) for normalised DOF positions. */
 void st_robot_angles(const stRobot *r, const double *qhat, double *angle);
 
