@@ -12,7 +12,10 @@
  * postures of the primitives (SPEC §8) with their object positions, the object-table collision
  * off after 40 (grasp) or 10 (move) steps as in main-prim trials. The same-run baseline is, in
  * kinematic mode, the brute-force contact detection; in dynamic mode the same trials with
- * dynamics.substep=0.005 (or the --baseline override). */
+ * dynamics.substep=0.005 (or the --baseline override). Dynamic mode also prints the contact-rich
+ * figure held=...: the four move starts (the ball in a stable grasp) with the table gone from
+ * the first step and the hand frozen at its start posture, 60 steps each; held_kept counts the
+ * trials whose ball is still above the table at the end. */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -65,6 +68,43 @@ static double bench_trial(stWorld *w, const stConfig *cfg, const stSensorDef *sd
     sum += q.d_r + w->contacts.arm_table + w->obj[2];
   }
   return sum;
+}
+
+/* the contact-rich case: the ball in the hand of a move start, table gone, commands frozen;
+ * returns 1 when the ball is still above the table top at the end */
+static int held_trial(stWorld *w, const stScene *scene, const double *q0, const double *obj,
+                      const double *target, int steps, uint64_t seed) {
+  st_world_set_seed(w, seed);
+  st_world_reset(w, q0, obj, target);
+  st_world_set_object_table_collision(w, 0);
+  double y[ST_NET_MAX_OUT] = {0};
+  memcpy(y, q0, sizeof(double) * ST_NDOF);
+  for (int t = 0; t < steps && !st_world_unstable(w); t++) st_world_step(w, y);
+  return !st_world_unstable(w) && w->obj[2] > scene->table_hi[2];
+}
+
+/* T held trials on the given threads; returns the elapsed time and counts the balls kept */
+static double held_run(const stRobot *robot, const stScene *scene, const stDynDef *def,
+                       double (*q0)[ST_NPOSTURE][ST_NDOF], int trials, int steps, int threads,
+                       long *kept) {
+  double t0 = now();
+  long k_sum = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : k_sum)
+  {
+    stWorld *w = NULL;
+    char e[256];
+    if (st_world_create_dynamic(robot, scene, def, &w, e, sizeof e) == ST_OK) {
+#pragma omp for schedule(dynamic, 1)
+      for (int t = 0; t < trials; t++) {
+        const int k = t % ST_NPOSTURE;
+        k_sum += held_trial(w, scene, q0[ST_PRIM_MOVE][k], scene->obj_pos[k], scene->target[k % 2],
+                            steps, (uint64_t)t);
+      }
+      st_world_destroy(w);
+    }
+  }
+  *kept += k_sum;
+  return now() - t0;
 }
 
 typedef struct dynStats {
@@ -127,6 +167,9 @@ static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int base
   const int steps = 60;
   double *rate = malloc(sizeof *rate * (size_t)reps), *base = malloc(sizeof *base * (size_t)reps);
   double *per_trial = malloc(sizeof *per_trial * (size_t)trials);
+  double *held = malloc(sizeof *held * (size_t)reps);
+  const int held_trials = 4 * ST_NPOSTURE;
+  long kept = 0;
   dynStats st = {0, 0, 0}, bst = {0, 0, 0};
   stDynInfo info, binfo;
   memset(&info, 0, sizeof info);
@@ -137,16 +180,21 @@ static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int base
     double dt = dyn_run(cfg, robot, &scene, is_base ? &base_def : &def, &sd, np, ngenome, q0, trials,
                         steps, threads, per_trial, is_base ? &bst : &st, is_base ? &binfo : &info);
     (is_base ? base : rate)[r] = (double)trials * steps / dt;
+    if (!is_base)
+      held[r] = (double)held_trials * steps /
+                held_run(robot, &scene, &def, q0, held_trials, steps, threads, &kept);
   }
   qsort(rate, (size_t)reps, sizeof *rate, cmp_double);
   qsort(base, (size_t)reps, sizeof *base, cmp_double);
+  qsort(held, (size_t)reps, sizeof *held, cmp_double);
   const double med = rate[reps / 2], med_base = base[reps / 2];
   printf("mode=dynamic steps_per_s=%.0f per_core=%.0f threads=%d bodies=%d substep=%g "
          "iterations=%d solver=%s reps=%d trials=%d steps_per_trial=%d robot_in_ode=%.0f%% "
-         "unstable=%ld\n",
+         "unstable=%ld held=%.0f held_per_core=%.0f held_kept=%ld/%ld\n",
          med, med / threads, threads, info.bodies, def.substep, def.iterations,
          st_config_enum_name("dynamics", "solver", info.solver), reps, trials, steps,
-         st.substeps ? 100.0 * (double)st.ode_substeps / (double)st.substeps : 0.0, st.unstable);
+         st.substeps ? 100.0 * (double)st.ode_substeps / (double)st.substeps : 0.0, st.unstable,
+         held[reps / 2], held[reps / 2] / threads, kept, (long)held_trials * reps);
   if (baseline)
     printf("baseline=%s steps_per_s=%.0f per_core=%.0f speedup=%.2f robot_in_ode=%.0f%% "
            "unstable=%ld\n",
@@ -156,6 +204,7 @@ static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int base
   free(rate);
   free(base);
   free(per_trial);
+  free(held);
   st_robot_destroy(robot);
   return 0;
 }

@@ -52,6 +52,7 @@ typedef struct dynHinge {
   int dof;
   double lo, hi; /* range used for qhat (rad); the stops are stop_margin outside */
   double lo_set, hi_set; /* stops currently set in ODE */
+  int kin;       /* in dynamics.kinematic_joints: an exact servo (joint disabled, body kinematic) */
 } dynHinge;
 
 typedef struct dynInternal {
@@ -73,6 +74,7 @@ typedef struct dynInternal {
   double (*link_p)[3];
   int nhinge;
   dynHinge *hinge;
+  int nkin;                 /* the first nkin hinges are exact servos (dynamics.kinematic_joints) */
   int ngeom;
   dynGeom *geom;
   dTriMeshDataID *meshes;
@@ -193,6 +195,7 @@ void st_dyn_def_from_config(const stConfig *c, stDynDef *d) {
   d->fudge_factor = c->dynamics_fudge_factor;
   d->free_motion = c->dynamics_free_motion;
   d->contact_margin = c->dynamics_contact_margin;
+  snprintf(d->kinematic_joints, sizeof d->kinematic_joints, "%s", c->dynamics_kinematic_joints);
 }
 
 /* value checks before anything reaches ODE (its dError would end the process) */
@@ -471,6 +474,61 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   return ST_OK;
 }
 
+/* 1 when name is one of the comma-separated names of list */
+static int name_listed(const char *list, const char *name) {
+  const size_t n = strlen(name);
+  for (const char *s = list; *s;) {
+    while (*s == ',' || *s == ' ') s++;
+    const size_t len = strcspn(s, ",");
+    size_t l = len;
+    while (l && s[l - 1] == ' ') l--;
+    if (l && l == n && !strncmp(s, name, n)) return 1;
+    s += len;
+  }
+  return 0;
+}
+
+/* dynamics.kinematic_joints: those hinges become exact servos (joint disabled, body kinematic).
+ * Every listed name must be a hinge whose parent body is the static root or kinematic itself,
+ * so that the kinematic bodies are the chain's first links and carry no dynamic parent. */
+static stStatus mark_kinematic(dynInternal *d, const stModel *m, char *err, size_t errsz) {
+  int found = 0;
+  for (int i = 0; i < d->nhinge; i++) {
+    dynHinge *hg = &d->hinge[i];
+    if (!name_listed(d->def.kinematic_joints, m->jnt_name[hg->link])) continue;
+    const int pg = d->link_group[m->body_parent[hg->link]];
+    if (pg >= 0 && !d->hinge[pg].kin) {
+      st__errf(err, errsz, "dynamics.kinematic_joints: joint '%s' follows the dynamic joint '%s' "
+               "(expected the first joints of the chain, parents before children)",
+               m->jnt_name[hg->link], m->jnt_name[d->hinge[pg].link]);
+      return ST_ERR_RANGE;
+    }
+    if (i != found) {
+      st__errf(err, errsz, "dynamics.kinematic_joints: joint '%s' is not among the chain's first "
+               "joints (expected a prefix of the chain)", m->jnt_name[hg->link]);
+      return ST_ERR_RANGE;
+    }
+    hg->kin = 1;
+    dJointDisable(hg->j);
+    dBodySetKinematic(d->gbody[i]);
+    found++;
+  }
+  int listed = 0;
+  for (const char *s = d->def.kinematic_joints; *s;) {
+    while (*s == ',' || *s == ' ') s++;
+    if (*s) listed++;
+    s += strcspn(s, ",");
+  }
+  if (found != listed) {
+    st__errf(err, errsz, "dynamics.kinematic_joints: '%s' names %d joints, %d of them hinges of "
+             "the model (expected names of revolute joints, each once)", d->def.kinematic_joints,
+             listed, found);
+    return ST_ERR_RANGE;
+  }
+  d->nkin = found;
+  return ST_OK;
+}
+
 stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, const stDynDef *def,
                                  stWorld **out, char *err, size_t errsz) {
   *out = NULL;
@@ -541,6 +599,7 @@ stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, con
   d->surface.soft_erp = def->contact_erp;
   d->surface.soft_cfm = def->contact_cfm;
   stStatus st = build(w, d, err, errsz);
+  if (!st) st = mark_kinematic(d, m, err, errsz);
   if (st) {
     st_world_destroy(w);
     return st;
@@ -599,8 +658,10 @@ static int collide(dynInternal *d, dGeomID a, dGeomID b, int make) {
       memset(&c, 0, sizeof c);
       c.surface = d->surface;
       c.geom = d->cg[i];
+      dBodyID b1 = dGeomGetBody(d->cg[i].g1), b2 = dGeomGetBody(d->cg[i].g2);
+      if ((!b1 || dBodyIsKinematic(b1)) && (!b2 || dBodyIsKinematic(b2))) continue; /* no effect */
       dJointID j = dJointCreateContact(d->world, d->cgroup, &c);
-      dJointAttach(j, dGeomGetBody(d->cg[i].g1), dGeomGetBody(d->cg[i].g2));
+      dJointAttach(j, b1, b2);
     }
   return n > 0;
 }
@@ -784,12 +845,13 @@ static void place_bodies(stWorld *w) {
   }
 }
 
-/* sets every robot body's velocity to what the joint velocities d->vel give (hinge i moves
- * body i; parents come first) */
-static void prescribe_velocities(stWorld *w) {
+/* sets every robot body's velocity (only_kin: every kinematic body's) to what the joint
+ * velocities d->vel give (hinge i moves body i; parents come first) */
+static void prescribe_velocities(stWorld *w, int only_kin) {
   dynInternal *d = w->internal_;
   const stModel *m = w->robot->model;
   for (int g = 0; g < d->ngroup; g++) {
+    if (only_kin && !d->hinge[g].kin) continue;
     const int pg = d->link_group[m->body_parent[d->glink[g]]];
     dVector3 a, anc;
     dJointGetHingeAxis(d->hinge[g].j, a);
@@ -821,11 +883,27 @@ static void prescribe_velocities(stWorld *w) {
   }
 }
 
+/* the kinematic bodies where forward kinematics of d->angle puts them, moving at d->vel */
+static void place_kinematic(stWorld *w) {
+  dynInternal *d = w->internal_;
+  st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
+  for (int g = 0; g < d->ngroup && d->hinge[g].kin; g++) {
+    const int gl = d->glink[g];
+    double c[3];
+    mat_vec(w->R[gl], d->gcom[g], c);
+    dBodySetPosition(d->gbody[g], w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
+    dMatrix3 Ro;
+    to_ode_rot(w->R[gl], Ro);
+    dBodySetRotation(d->gbody[g], Ro);
+  }
+  prescribe_velocities(w, 1);
+}
+
 /* free motion -> ODE: bodies at the kinematic pose, moving at the servo velocities */
 static void robot_to_ode(stWorld *w) {
   dynInternal *d = w->internal_;
   place_bodies(w);
-  prescribe_velocities(w);
+  prescribe_velocities(w, 0);
   for (int g = 0; g < d->ngroup; g++) dBodyEnable(d->gbody[g]);
   d->robot_dyn = 1;
 }
@@ -836,7 +914,7 @@ static void robot_to_free(stWorld *w, int read) {
   dynInternal *d = w->internal_;
   if (read)
     for (int i = 0; i < d->nhinge; i++)
-      d->angle[d->hinge[i].link] = dJointGetHingeAngle(d->hinge[i].j);
+      if (!d->hinge[i].kin) d->angle[d->hinge[i].link] = dJointGetHingeAngle(d->hinge[i].j);
   for (int g = 0; g < d->ngroup; g++) dBodyDisable(d->gbody[g]);
   d->robot_dyn = 0;
 }
@@ -848,7 +926,7 @@ static void read_state(stWorld *w) {
   int cnt[ST_NDOF] = {0};
   for (int i = 0; i < d->nhinge; i++) {
     const dynHinge *hg = &d->hinge[i];
-    if (d->robot_dyn) d->angle[hg->link] = dJointGetHingeAngle(hg->j);
+    if (d->robot_dyn && !hg->kin) d->angle[hg->link] = dJointGetHingeAngle(hg->j);
     const double q = (d->angle[hg->link] - hg->lo) / (hg->hi - hg->lo);
     sum[hg->dof] += q < 0.0 ? 0.0 : q > 1.0 ? 1.0 : q;
     cnt[hg->dof]++;
@@ -872,7 +950,7 @@ void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const do
   st_robot_angles(w->robot, q, d->angle);
   for (int i = 0; i < d->nhinge; i++) d->vel[i] = 0.0;
   place_bodies(w);
-  prescribe_velocities(w); /* at rest */
+  prescribe_velocities(w, 0); /* at rest */
   const int ok = isfinite(obj[0]) && isfinite(obj[1]) && isfinite(obj[2]);
   dBodySetPosition(d->ball, ok ? obj[0] : 0, ok ? obj[1] : 0, ok ? obj[2] : 0);
   static const dMatrix3 I = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
@@ -931,7 +1009,7 @@ static void servo(stWorld *w, const double *y) {
     const dynHinge *hg = &d->hinge[i];
     double yd = y[hg->dof];
     yd = yd < 0.0 ? 0.0 : yd > 1.0 ? 1.0 : yd;
-    const double a = d->robot_dyn ? dJointGetHingeAngle(hg->j) : d->angle[hg->link];
+    const double a = d->robot_dyn && !hg->kin ? dJointGetHingeAngle(hg->j) : d->angle[hg->link];
     double v = alpha * (yd - (a - hg->lo) / (hg->hi - hg->lo));
     d->vel[i] = v > vmax ? vmax : v < -vmax ? -vmax : v;
   }
@@ -944,6 +1022,7 @@ static void servo(stWorld *w, const double *y) {
 static void speculative_stops(dynInternal *d, double vmax) {
   for (int i = 0; i < d->nhinge; i++) {
     const dynHinge *hg = &d->hinge[i];
+    if (hg->kin) continue;
     const double rate = dJointGetHingeAngleRate(hg->j);
     double lo = hg->lo - d->def.stop_margin, hi = hg->hi + d->def.stop_margin;
     /* only joints thrown faster than any servo moves them: a joint resting on a stop gets
@@ -1050,7 +1129,9 @@ void st_world_step_dynamic(stWorld *w, const double *y) {
     stContacts c;
     memset(&c, 0, sizeof c);
     if (d->robot_dyn) {
-      for (int i = 0; i < d->nhinge; i++) dJointSetHingeParam(d->hinge[i].j, dParamVel, d->vel[i]);
+      for (int i = 0; i < d->nhinge; i++)
+        if (!d->hinge[i].kin) dJointSetHingeParam(d->hinge[i].j, dParamVel, d->vel[i]);
+      if (d->nkin) place_kinematic(w);
       speculative_stops(d, w->robot->max_velocity);
       d->dyn_substeps++;
     } else {
@@ -1058,6 +1139,8 @@ void st_world_step_dynamic(stWorld *w, const double *y) {
       st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
     }
     const int ok = ode_substep(w, &c);
+    if (d->robot_dyn) /* the exact servos advance as in free motion */
+      for (int i = 0; i < d->nkin; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
     if (s > 0) contacts_or(&acc, &c); /* the state after this control step's previous sub-step */
     if (!ok) {
       set_unstable(w, "ODE could not allocate its step memory");

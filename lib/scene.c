@@ -46,6 +46,7 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
   s->posture.grasp_oppose = c->postures_grasp_oppose;
   s->posture.grasp_partial_oppose = c->postures_grasp_partial_oppose;
   s->posture.grasp_partial_flex = c->postures_grasp_partial_flex;
+  s->posture.grasp_partial_thumb_flex = c->postures_grasp_partial_thumb_flex;
   s->posture.move_ball_x = c->postures_move_ball_x;
   s->posture.move_gap = c->postures_move_gap;
   s->posture.move_oppose = c->postures_move_oppose;

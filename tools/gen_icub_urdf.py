@@ -1,6 +1,15 @@
 #!/usr/bin/env python3
 """Generates data/icub_left_arm.urdf from the iCub v1 facts: python3 tools/gen_icub_urdf.py [OUT]; then check it with python3 tools/urdf_fk_check.py."""
 import math
+import os
+
+# Hand structure (data/README.md §hand): which phalanges are separate bodies. Environment
+# overrides exist for the measurements recorded there; the defaults generate the shipped URDF.
+FINGER_HINGES = int(os.environ.get("ST_FINGER_HINGES", "3"))      # 3 = iKin (MCP, PIP, DIP); 2 = DIP welded straight
+THUMB_HINGES = int(os.environ.get("ST_THUMB_HINGES", "3"))        # flexing thumb hinges: 3 = iKin; 2 = distal welded
+MERGE_RING_LITTLE = os.environ.get("ST_MERGE_RING_LITTLE", "1") == "1"  # iCub_SIM: one body per phalanx level
+# thumb base moved from iKin's, in the palm frame (+x along the fingers, +y towards the thumb), m
+THUMB_SHIFT = [float(v) for v in os.environ.get("ST_THUMB_SHIFT", "-0.035,0").split(",")]
 
 PI = math.pi
 D = PI / 180.0
@@ -357,7 +366,7 @@ def phalanx(f_, k, mass, tag):
 
 fl = (0, 90)
 # thumb
-H = matmul(T_hand_ee, finger_H0("thumb"))
+H = chain(T_hand_ee, trans(THUMB_SHIFT[0], -THUMB_SHIFT[1], 0.0), finger_H0("thumb"))  # palm y = -EE y
 # l_thumb_0: child of oppose (link 0, zero length) + the blocked metacarpal link 1 (fixed at 0)
 Cm = FC["thumb"][0]                              # link-0 constant part (Rx(pi/2))
 a1, d1 = FINGER_DH["thumb"][1][0], FINGER_DH["thumb"][1][1]
@@ -372,10 +381,18 @@ add_joint("l_thumb_oppose", "revolute", "l_hand", "l_thumb_0", H, (0, 90), FINGE
           comment="iKin thumb link 0 (j8); origin = EE * H0_thumb")
 add_joint("l_thumb_proximal", "revolute", "l_thumb_0", "l_thumb_1", matmul(FC["thumb"][0], FC["thumb"][1]), fl, FINGER_EFFORT,
           comment="iKin thumb link 2 (j9); origin folds links 0 and 1 (link 1 blocked at 0)")
-add_joint("l_thumb_distal1", "revolute", "l_thumb_1", "l_thumb_2", FC["thumb"][2], fl, FINGER_EFFORT,
-          mimic="l_thumb_proximal", comment="iKin thumb link 3")
-add_joint("l_thumb_distal2", "revolute", "l_thumb_2", "l_thumb_3", FC["thumb"][3], fl, FINGER_EFFORT,
-          mimic="l_thumb_proximal", comment="iKin thumb link 4")
+if THUMB_HINGES >= 2:
+    add_joint("l_thumb_distal1", "revolute", "l_thumb_1", "l_thumb_2", FC["thumb"][2], fl, FINGER_EFFORT,
+              mimic="l_thumb_proximal", comment="iKin thumb link 3")
+else:
+    add_joint("l_thumb_distal1", "fixed", "l_thumb_1", "l_thumb_2", FC["thumb"][2],
+              comment="iKin thumb link 3, welded straight (one body with the proximal phalanx)")
+if THUMB_HINGES >= 3:
+    add_joint("l_thumb_distal2", "revolute", "l_thumb_2", "l_thumb_3", FC["thumb"][3], fl, FINGER_EFFORT,
+              mimic="l_thumb_proximal", comment="iKin thumb link 4")
+else:
+    add_joint("l_thumb_distal2", "fixed", "l_thumb_2", "l_thumb_3", FC["thumb"][3],
+              comment="iKin thumb link 4, welded straight (one body with the middle phalanx)")
 add_joint("l_thumb_tip_fixed", "fixed", "l_thumb_3", "l_thumb_tip", FC["thumb"][4])
 
 for f_ in ["index", "middle", "ring", "little"]:
@@ -396,9 +413,30 @@ for f_ in ["index", "middle", "ring", "little"]:
     for s in range(3):
         T = FC[f_][k0 + s - 1] if (s > 0 or has_abd) else H
         mim = None if (f_ == "index" and s == 0) else "l_index_proximal"
-        add_joint(jn[s], "revolute", par[s], "l_%s_%d" % (f_, s + 1), T, fl, FINGER_EFFORT, mimic=mim,
-                  comment="iKin %s link %d" % (f_, k0 + s))
+        if s < FINGER_HINGES:
+            add_joint(jn[s], "revolute", par[s], "l_%s_%d" % (f_, s + 1), T, fl, FINGER_EFFORT, mimic=mim,
+                      comment="iKin %s link %d" % (f_, k0 + s))
+        else:
+            add_joint(jn[s], "fixed", par[s], "l_%s_%d" % (f_, s + 1), T,
+                      comment="iKin %s link %d, welded straight to the phalanx before it" % (f_, k0 + s))
     add_joint("l_%s_tip_fixed" % f_, "fixed", "l_%s_3" % f_, "l_%s_tip" % f_, FC[f_][k0 + 2])
+
+def zero_pose(link):
+    """Pose of a link in the root frame with every joint at 0 (joint origins chained)."""
+    for j in joints:
+        if j["child"] == link:
+            return matmul(zero_pose(j["parent"]), j["T"])
+    return eye()
+
+if MERGE_RING_LITTLE:
+    # iCub_SIM: ring and little share one rigid body per phalanx level, driven by the ring's
+    # hinges; each little phalanx becomes a fixed child of the ring phalanx at its level
+    for s in range(1, 4):
+        for j in joints:
+            if j["child"] == "l_little_%d" % s:
+                j.update(type="fixed", parent="l_ring_%d" % s, lim=None, effort=None, mimic=None,
+                         T=matmul(inv(zero_pose("l_ring_%d" % s)), zero_pose("l_little_%d" % s)),
+                         comment="little phalanx %d: rigid with the ring phalanx of its level (iCub_SIM)" % s)
 
 # ---------------------------------------------------------------- emit
 out = []

@@ -119,9 +119,10 @@ extern "C" {
   REAL(postures, open_high_flex, 0.8, 0.0, 1.0, "open k=2,3: thumb and finger flexion (hand almost closed), normalised") \
   REAL(postures, grasp_gap, 0.03, 0.0, 0.3, "grasp: palm down, this far above the ball top, m") \
   REAL(postures, grasp_ball_x, 0.0, -0.2, 0.2, "grasp: ball centre ahead of the palm centre along the fingers, m (0: palm centred over the ball; the move posture holds it at move_ball_x)") \
-  REAL(postures, grasp_oppose, 0.0, 0.0, 1.0, "grasp k=0,1: thumb opposition (fingers fully extended)") \
-  REAL(postures, grasp_partial_oppose, 0.3, 0.0, 1.0, "grasp k=2,3: thumb opposition") \
-  REAL(postures, grasp_partial_flex, 0.25, 0.0, 1.0, "grasp k=2,3: thumb and finger flexion (partly extended)") \
+  REAL(postures, grasp_oppose, 0.9, 0.0, 1.0, "grasp k=0,1: thumb opposition (fingers fully extended)") \
+  REAL(postures, grasp_partial_oppose, 0.5, 0.0, 1.0, "grasp k=2,3: thumb opposition") \
+  REAL(postures, grasp_partial_flex, 0.25, 0.0, 1.0, "grasp k=2,3: finger flexion (partly extended)") \
+  REAL(postures, grasp_partial_thumb_flex, 0.0, 0.0, 1.0, "grasp k=2,3: thumb flexion (the thesis gives only the fingers)") \
   REAL(postures, move_ball_x, 0.035, -0.2, 0.2, "move: ball centre ahead of the palm centre along the fingers, m (0.035: the thumb closes below the equator, so the grasp holds in dynamic mode)") \
   REAL(postures, move_gap, -0.001, -0.05, 0.1, "move: palm above the ball top, m (negative: pressing on it)") \
   REAL(postures, move_oppose, 0.8, 0.0, 1.0, "move: thumb opposition, normalised (0.8: holds the ball for 3 s in dynamic mode; 0.5 let it fall)") \
@@ -131,7 +132,7 @@ extern "C" {
   REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \
   INT(dynamics, iterations, 20, 1, 1000, "quickstep solver iterations per sub-step") \
   REAL(dynamics, gravity, 9.81, 0.0, 100.0, "gravity, m/s^2 (downwards)") \
-  REAL(dynamics, friction, 1.0, 0.0, 100.0, "Coulomb friction coefficient of robot-object and object-table contacts") \
+  REAL(dynamics, friction, 1.5, 0.0, 100.0, "Coulomb friction coefficient of robot-object and object-table contacts (silicone-skinned fingertips; data/README.md, Hand)") \
   REAL(dynamics, erp, 0.2, 0.0, 1.0, "error reduction parameter of joints and contacts") \
   REAL(dynamics, cfm, 1e-5, 0.0, 1.0, "constraint force mixing of joints and contacts") \
   INT(dynamics, max_contacts, 4, 1, 64, "contact points generated per colliding geometry pair") \
@@ -147,6 +148,7 @@ extern "C" {
   REAL(dynamics, limit_tolerance_deg, 10.0, 0.0, 180.0, "a joint beyond its range by more than this makes the world unstable, degrees (impacts can push the weak wrist joints a few degrees past their stops)") \
   REAL(dynamics, stop_margin_deg, 0.5, 0.0, 28.0, "joint stops sit this far outside the qhat range, degrees, so that a servo holding the end of its range never rests on a stop") \
   REAL(dynamics, fudge_factor, 0.001, 0.0, 1.0, "ODE joint fudge factor: fraction of the motor torque applied explicitly when a powered joint leaves a stop (1 kicks 10 g phalanges)") \
+  STR(dynamics, kinematic_joints, "torso_pitch,torso_yaw,l_shoulder_pitch,l_shoulder_roll,l_shoulder_yaw", "first joints of the chain that follow the servo law exactly in dynamic mode, their links kinematic bodies (PROTOCOL, Dynamic mode); empty: all bounded-torque motors") \
   BOOL(dynamics, free_motion, 1, "1: while no robot part can reach the table or the object within a sub-step, the robot moves kinematically (its servos cannot saturate) and ODE steps the object alone") \
   REAL(dynamics, contact_margin, 0.03, 0.0, 1.0, "free motion ends when a robot part comes this close to the table or the object, m (>= the distance a part moves in one sub-step)")
   /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */

@@ -31,6 +31,7 @@ typedef struct stPostureDef {
   double grasp_oppose;
   double grasp_partial_oppose;
   double grasp_partial_flex;
+  double grasp_partial_thumb_flex;
   double move_ball_x;
   double move_gap;
   double move_oppose;

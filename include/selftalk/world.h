@@ -112,6 +112,8 @@ typedef struct stDynDef {
   int free_motion;           /* 1: the robot moves kinematically while nothing can touch it */
   double contact_margin;     /* m: closer than this to the table or the object, the robot is in
                                 ODE's step */
+  char kinematic_joints[ST_CONFIG_STR_MAX]; /* comma-separated joint names: exact servos whose
+                                links are kinematic bodies (a prefix of the chain) */
 } stDynDef;
 
 /* Fills def from the [dynamics] keys. */
