@@ -236,7 +236,8 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
              c->ga_parents, c->ga_population);
     return st_config_find("ga", "parents");
   }
-  if (c->ga_success_genotypes > c->ga_population) {
+  /* the primitive stages' termination; the integrated stage runs its generations */
+  if (c->stage_stages != ST_STAGES_INTEGRATED && c->ga_success_genotypes > c->ga_population) {
     snprintf(msg, n, "%d exceeds ga.population = %d (expected success_genotypes <= population)",
              c->ga_success_genotypes, c->ga_population);
     return st_config_find("ga", "success_genotypes");

@@ -91,13 +91,13 @@ static stStatus record_alloc(stIntRecord *rec, int steps, char *err, size_t errs
   return st__errf(err, errsz, "integrated trial: out of memory"), ST_ERR_NOMEM;
 }
 
-/* the prediction score of a recorded caretaker trial: zero unless the object reached the
- * target lifted (such a trial adds nothing to F_pred, eq. 2.24) */
-static stStatus score_prediction(const stIntegratedDef *def, const stIntTrialResult *r,
-                                 const stIntRecord *rec, stPredScore *pred, char *err,
-                                 size_t errsz) {
+/* the prediction score of a recorded caretaker trial (st_int_combine counts it only when the
+ * object reached the target lifted, eq. 2.24); a trial cut short before its second step has
+ * none */
+static stStatus score_prediction(const stIntegratedDef *def, const stIntRecord *rec,
+                                 stPredScore *pred, char *err, size_t errsz) {
   memset(pred, 0, sizeof *pred);
-  if (r->reached_step < 0 || rec->n < 2) return ST_OK;
+  if (rec->n < 2) return ST_OK;
   const stPredTrial t = {rec->n, rec->word, (const double(*)[ST_PRED_NWORDS])rec->o};
   return st_pred_trial(&def->pred, &t, pred, err, errsz);
 }
@@ -119,7 +119,7 @@ stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWor
   const stScorer sc = st_int_scorer(&is, p, def, r, predicts ? &rec : NULL);
   if (!st) st = st_episode_run(p, ws, &e, &ctl, &words, &sc, trace, ctx, err, errsz);
   if (pred) memset(pred, 0, sizeof *pred);
-  if (!st && pred && predicts) st = score_prediction(def, r, &rec, pred, err, errsz);
+  if (!st && pred && predicts) st = score_prediction(def, &rec, pred, err, errsz);
   free(rec.word);
   free(rec.o);
   return st;

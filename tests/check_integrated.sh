@@ -73,5 +73,127 @@ else
   ko "score refusals" "$(cat "$tmp"/e[1-5])"
 fi
 
+# ---- evolve: the four conditions, tiny (4 genotypes: the best of each simple-prim population
+# in data/evolved; 30-step trials), 2 generations: the first generation's variant, then the
+# condition's own trials
+EV="$APPDIR/evolve"
+tiny=(--set "integrated.populations=data/evolved/simple_prim_s*.genome" --set integrated.top=1
+      --set ga.population=4 --set ga.elites=1 --set ga.parents=2 --set integrated.steps=30)
+same_files() { # DIR1 DIR2
+  for f in config.ini fitness.csv best.genome population.genome checkpoint; do
+    cmp -s "$1/$f" "$2/$f" || { echo "  $f differs between $1 and $2"; return 1; }
+  done
+}
+for c in stct st ct ni; do
+  "$EV" configs/integrated_$c.cfg "${tiny[@]}" --generations 2 --threads 1 --out "$tmp/$c" > "$tmp/$c.log" 2>&1
+  genes=696; [ $c = ct ] || [ $c = ni ] && genes=756
+  if [ "$(grep -c '^gen    [01] integrated best ' "$tmp/$c.log")" = 2 ] &&
+     grep -q "from the top 1 of 4 population files: 4 genotypes" "$tmp/$c.log" &&
+     head -1 "$tmp/$c/fitness.csv" | grep -q '^generation,best,mean,worst,best_F_int,best_F_pred,best_bonus,best_bonus_auto,best_successes,best_t0,.*,best_t7$' &&
+     [ "$(wc -l < "$tmp/$c/fitness.csv")" = 3 ] && [ "$(grep -c '^# stage integrated' "$tmp/$c/best.genome")" = 2 ] &&
+     [ "$(grep -v '^#' "$tmp/$c/population.genome" | awk -v n=$((4 * genes)) 'length($0) == n' | wc -l)" = 4 ]; then
+    ok "configs/integrated_$c.cfg runs: progress lines, fitness.csv columns, best.genome, population.genome of $genes genes"
+  else
+    ko "integrated_$c run" "$(tail -3 "$tmp/$c.log")"
+  fi
+done
+
+# the base part (genes 0-611) of every genotype ever written is one of the four it started from
+if python3 - "$tmp" <<'PY'
+import glob, sys
+starts = set()
+for f in sorted(glob.glob("data/evolved/simple_prim_s*.genome")):
+    starts.add(next(l.strip() for l in open(f) if l.strip() and not l.startswith("#"))[:4 * 612])
+bad = 0
+for c in ("stct", "st", "ct", "ni"):
+    for name in ("population.genome", "best.genome", "checkpoint"):
+        for line in open(f"{sys.argv[1]}/{c}/{name}"):
+            if line.strip() and not line.startswith("#"):
+                bad += line.strip()[:4 * 612] not in starts
+print("genotypes whose frozen genes changed:", bad)
+sys.exit(1 if bad or len(starts) != 4 else 0)
+PY
+then ok "frozen genes never change (every genotype's first 612 genes are an initial genotype's)"
+else ko "frozen genes"; fi
+
+"$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 2 --threads 2 --out "$tmp/stct2" > /dev/null 2>&1
+"$EV" configs/integrated_ct.cfg "${tiny[@]}" --generations 2 --threads 2 --out "$tmp/ct2" > /dev/null 2>&1
+if same_files "$tmp/stct" "$tmp/stct2" && same_files "$tmp/ct" "$tmp/ct2"; then
+  ok "1 and 2 threads give bit-identical files (ST-CT, CT)"
+else ko "thread independence"; fi
+
+# killed, resumed (twice): the files of the uninterrupted run
+"$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 3 --threads 1 --out "$tmp/full" > /dev/null 2>&1
+"$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 3 --threads 1 --out "$tmp/k" > /dev/null 2>&1 &
+pid=$!; sleep 1.3; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+"$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 3 --threads 2 --out "$tmp/k" --resume > /dev/null 2>&1 &
+pid=$!; sleep 0.6; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+"$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 3 --threads 1 --out "$tmp/k" --resume > "$tmp/k.log" 2>&1
+if same_files "$tmp/full" "$tmp/k"; then ok "killed twice and resumed: identical files"
+else ko "resume" "$(tail -2 "$tmp/k.log")"; fi
+
+# replay: the best of the last generation, trial by trial, gives back its fitness (F_int over
+# the odd trials + F_pred over the even ones, recombined here from the per-trial summaries) and
+# its successes; its trace of a caretaker trial, fed to score, gives replay's prediction score
+for k in 0 1 2 3 4 5 6 7; do
+  "$APPDIR/replay" "$tmp/stct/population.genome" "$tmp/stct/config.ini" --trial $k --generation 1 \
+    --out "$tmp/trace$k.csv"
+done > "$tmp/replay.txt" 2> "$tmp/replay.err"
+if python3 - "$tmp/replay.txt" "$tmp/stct/fitness.csv" "$tmp/trace0.csv" "$tmp/trace1.csv" <<'PY'
+import csv, re, sys
+rows = [dict(re.findall(r"(\w+)=(\S+)", l)) for l in open(sys.argv[1])]
+bonus = points = steps = 0.0
+b_pred = parts = 0.0; T = 0
+for r in rows:
+    if r["fitness"] == "integrated":
+        bonus += float(r["bonus"]); points += float(r["points"]); steps += int(r["steps"].split("/")[1])
+    else:
+        T += 1
+        if r["reached"] == "1":
+            b_pred += float(r["B_pred"]); parts += float(r["F_step"]) / 3 + 2 * float(r["F_switch"]) / 3
+F = bonus + 100 * points / steps + b_pred + parts / T
+best = list(csv.DictReader(open(sys.argv[2])))[-1]
+succ = [r["success"] for r in rows] == [best["best_t%d" % i] for i in range(8)]
+words = [r["words"] for r in rows] == ["caretaker", "selftalk"] * 4
+t0, t1 = list(csv.DictReader(open(sys.argv[3]))), list(csv.DictReader(open(sys.argv[4])))
+# caretaker trial: silent at step 0, then reach; self-talk trial: hears its previous label
+care = t0[0]["caretaker_word"] == "-1" and t0[1]["caretaker_word"] == "0" and t0[0]["lo_reach"] != ""
+heard = all(float(t1[i]["ling_" + ["reach", "open", "grasp", "move"][int(t1[i - 1]["selftalk_label"])]]) == 10
+            for i in range(1, len(t1)))
+ok = abs(F - float(best["best"])) < 1e-9 * max(1, abs(F)) and succ and words and care and heard and t1[0]["hl_0"] == ""
+print("replay F %.12g vs csv %s; successes %s; words %s; caretaker %s; self talk heard %s" %
+      (F, best["best"], succ, words, care, heard))
+sys.exit(0 if ok else 1)
+PY
+then ok "replay of the best reproduces its fitness and successes; trace words, labels and linguistic outputs"
+else ko "replay integrated" "$(cat "$tmp/replay.err" | tail -2)"; fi
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+         { print $c["step"] "," $c["caretaker_word"] "," $c["lo_reach"] "," $c["lo_open"] "," $c["lo_grasp"] "," $c["lo_move"] }' \
+  "$tmp/trace0.csv" > "$tmp/words0.csv"
+"$APPDIR/score" prediction "$tmp/words0.csv" > "$tmp/score0.txt" 2>&1
+if python3 - "$tmp/score0.txt" "$tmp/replay.txt" <<'PY'
+import re, sys
+got = dict(re.findall(r"(\w+)=(\S+)", open(sys.argv[1]).read()))
+want = dict(re.findall(r"(\w+)=(\S+)", open(sys.argv[2]).readline()))
+ok = all(float(got[k]) == float(want[k]) for k in ("F_step", "F_switch", "B_pred"))
+print("score", got, "replay", {k: want[k] for k in ("F_step", "F_switch", "B_pred")})
+sys.exit(0 if ok else 1)
+PY
+then ok "score prediction of replay's trace equals replay's prediction score, bit for bit"
+else ko "trace -> score" "$(cat "$tmp/score0.txt")"; fi
+
+# bad integrated input, refused before any work
+expect() { # NAME NEEDLE DIR CMD...
+  local name=$1 needle=$2 dir=$3; shift 3
+  if "$@" > "$tmp/o" 2> "$tmp/e"; then ko "$name" "exit 0"; return; fi
+  if grep -qF -- "$needle" "$tmp/e" && [ ! -e "$dir/fitness.csv" ]; then ok "$name"; else ko "$name" "$(cat "$tmp/e")"; fi
+}
+expect "population files that do not exist refused" "'runs/none-s*/population.genome' matches no file" "$tmp/b1" \
+  "$EV" configs/integrated_ni.cfg --out "$tmp/b1" --set "integrated.populations=runs/none-s*/population.genome"
+expect "self talk with a type B network refused" "key 'integrated.words_even': self talk needs linguistic outputs" "$tmp/b2" \
+  "$EV" configs/integrated_ct.cfg --out "$tmp/b2" --set integrated.words_even=selftalk
+expect "too many genotypes refused" "4 files x integrated.top 10 = 40 genotypes (expected at most ga.population = 4)" "$tmp/b3" \
+  "$EV" configs/integrated_st.cfg "${tiny[@]}" --set integrated.top=10 --out "$tmp/b3"
+
 echo "check_integrated: $pass passed, $fail failed"
 [ "$fail" = 0 ]

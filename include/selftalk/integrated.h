@@ -180,7 +180,8 @@ stStatus st_int_evaluate(const stProtocol *p, const stIntegratedDef *def, stWork
                          stIntEvaluation *e, char *err, size_t errsz);
 
 /* Trial i of a generation with a network: the plan, the result and (prediction trials) the
- * prediction score, which is zero when the trial has no prediction fitness. Nullable: trace,
+ * prediction score of the trial's words and outputs, whether or not its object reached the
+ * target (st_int_combine decides whether it counts); zero for other trials. Nullable: trace,
  * pred. */
 stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
                           int generation, int individual, int i, const stNetParams *net,

@@ -4,6 +4,7 @@
 #ifndef SELFTALK_SELFTALK_H
 #define SELFTALK_SELFTALK_H
 
+#include "selftalk/assemble.h"
 #include "selftalk/base.h"
 #include "selftalk/config.h"
 #include "selftalk/ga.h"
