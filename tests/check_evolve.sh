@@ -9,11 +9,7 @@ trap 'rm -rf "$tmp"' EXIT
 pass=0 fail=0
 ok() { echo "check_evolve: $1 ok"; pass=$((pass + 1)); }
 ko() { echo "check_evolve: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
-same_files() { # DIR1 DIR2
-  for f in config.ini fitness.csv best.genome population.genome checkpoint; do
-    cmp -s "$1/$f" "$2/$f" || { echo "  $f differs between $1 and $2"; return 1; }
-  done
-}
+source "$(dirname "$0")/check_lib.sh"
 cfg=configs/simple_prim.cfg
 G=8
 
@@ -140,11 +136,6 @@ fi
 
 # bad input, refused before any work (no output directory appears)
 printf '[stage]\nstages = simple_prim\n[ga]\nelites = 200\n' > "$tmp/bad.cfg"
-expect() { # NAME NEEDLE DIR CMD...
-  local name=$1 needle=$2 dir=$3; shift 3
-  if "$@" > "$tmp/o" 2> "$tmp/e"; then ko "$name" "exit 0"; return; fi
-  if grep -qF -- "$needle" "$tmp/e" && [ ! -e "$dir/fitness.csv" ]; then ok "$name"; else ko "$name" "$(cat "$tmp/e")"; fi
-}
 expect "bad config refused with FILE:LINE" "$tmp/bad.cfg:4: key 'ga.elites': 200 exceeds ga.population" "$tmp/b1" \
   "$EV" "$tmp/bad.cfg" --out "$tmp/b1"
 expect "unknown --set key refused" "key 'ga.popsize': unknown key" "$tmp/b2" "$EV" $cfg --out "$tmp/b2" --set ga.popsize=5

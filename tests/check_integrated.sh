@@ -10,6 +10,7 @@ trap 'rm -rf "$tmp"' EXIT
 pass=0 fail=0
 ok() { echo "check_integrated: $1 ok"; pass=$((pass + 1)); }
 ko() { echo "check_integrated: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
+source "$(dirname "$0")/check_lib.sh"
 
 # ---- score prediction: the perfect predictor and the late switch of tests/test_prediction.c,
 # as two trials of one file (values worked out by hand there: F_step 100 and 80, F_switch
@@ -79,11 +80,6 @@ fi
 EV="$APPDIR/evolve"
 tiny=(--set "integrated.populations=data/evolved/simple_prim_s*.genome" --set integrated.top=1
       --set ga.population=4 --set ga.elites=1 --set ga.parents=2 --set integrated.steps=30)
-same_files() { # DIR1 DIR2
-  for f in config.ini fitness.csv best.genome population.genome checkpoint; do
-    cmp -s "$1/$f" "$2/$f" || { echo "  $f differs between $1 and $2"; return 1; }
-  done
-}
 for c in stct st ct ni; do
   "$EV" configs/integrated_$c.cfg "${tiny[@]}" --generations 2 --threads 1 --out "$tmp/$c" > "$tmp/$c.log" 2>&1
   genes=696; [ $c = ct ] || [ $c = ni ] && genes=756
@@ -183,11 +179,6 @@ then ok "score prediction of replay's trace equals replay's prediction score, bi
 else ko "trace -> score" "$(cat "$tmp/score0.txt")"; fi
 
 # bad integrated input, refused before any work
-expect() { # NAME NEEDLE DIR CMD...
-  local name=$1 needle=$2 dir=$3; shift 3
-  if "$@" > "$tmp/o" 2> "$tmp/e"; then ko "$name" "exit 0"; return; fi
-  if grep -qF -- "$needle" "$tmp/e" && [ ! -e "$dir/fitness.csv" ]; then ok "$name"; else ko "$name" "$(cat "$tmp/e")"; fi
-}
 expect "population files that do not exist refused" "'runs/none-s*/population.genome' matches no file" "$tmp/b1" \
   "$EV" configs/integrated_ni.cfg --out "$tmp/b1" --set "integrated.populations=runs/none-s*/population.genome"
 expect "self talk with a type B network refused" "key 'integrated.words_even': self talk needs linguistic outputs" "$tmp/b2" \

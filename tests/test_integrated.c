@@ -310,6 +310,15 @@ static void test_int_config_rules(void) {
   }
 }
 
+/* the default protocol (robot, scene, postures); NULL when it cannot be made */
+static stProtocol *default_protocol(void) {
+  const stTestFixture *fx = st_test_fixture();
+  stProtocol *p = NULL;
+  char err[512] = "";
+  if (fx->robot && st_protocol_create(&fx->cfg, &p, err, sizeof err)) fprintf(stderr, "\n  %s\n", err);
+  return p;
+}
+
 /* a talking controller that writes down what it hears: its label at step t is (3 t + 1) mod 4 */
 typedef struct talker {
   double heard[8][ST_NET_MAX_IN];
@@ -336,11 +345,9 @@ static int nothing_step(void *self, stTraceStep *s) {
  * the secondary input is 10 at every step. The caretaker is silent at step 0, then says reach
  * (the hand is far from the object). Kinematic world: only the words matter here. */
 static void test_int_selftalk_loop(void) {
-  const stTestFixture *fx = st_test_fixture();
-  CU_ASSERT_PTR_NOT_NULL_FATAL(fx->robot);
-  stProtocol *p = NULL;
+  stProtocol *p = default_protocol();
+  CU_ASSERT_PTR_NOT_NULL_FATAL(p);
   char err[512] = "";
-  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&fx->cfg, &p, err, sizeof err), ST_OK);
   stIntegratedDef d = small_def(6, 20);
   stEpisodeSpec e;
   st_int_episode(p, &d, 0, 0, NULL, 0, &e);
@@ -377,11 +384,8 @@ static void test_int_selftalk_loop(void) {
  * within +-2 cm (target also in z); the same for every individual of a generation, fresh in
  * the next generation; the solver's key differs per individual */
 static void test_int_trial_table(void) {
-  const stTestFixture *fx = st_test_fixture();
-  CU_ASSERT_PTR_NOT_NULL_FATAL(fx->robot);
-  stProtocol *p = NULL;
-  char err[512] = "";
-  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&fx->cfg, &p, err, sizeof err), ST_OK);
+  stProtocol *p = default_protocol();
+  CU_ASSERT_PTR_NOT_NULL_FATAL(p);
   stIntegratedDef d = small_def(240, 20);
   for (int i = 0; i < 8; i++) {
     stEpisodeSpec a, b, g;
