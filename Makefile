@@ -30,7 +30,7 @@ LIBS_SIM := $(shell pkg-config --libs $(PKGS_SIM) 2>/dev/null) -lstdc++ -lgomp
 LIBS_TEST := $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null)
 
 # the core needs no simulator: a robot controller can link the network, GA and config alone
-CORE_MODULES := base rng config genome net ga
+CORE_MODULES := base rng config genome net ga prediction assemble
 CORE_SRC := $(CORE_MODULES:%=lib/%.c)
 SIM_SRC := $(filter-out $(CORE_SRC),$(wildcard lib/*.c)) $(wildcard lib/*.cpp)
 CORE_OBJ := $(CORE_SRC:lib/%.c=$(BUILD)/obj/%.o)

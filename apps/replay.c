@@ -4,19 +4,29 @@
  *   replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] [--generation G]
  *          [--index I] [--force OUT=VALUE[@STEP]]... [--set section.key=value]...
  *
- * K = 0..15 (primitive K/4: reach, open, grasp, move; posture and object position K%4).
+ * Primitive stages: K = 0..15 (primitive K/4: reach, open, grasp, move; posture and object
+ * position K%4). Integrated stage (a config with stage.stages = integrated): K = 0..
+ * integrated.trials-1 (type K%4); the trial hears and is scored as that generation's plan says
+ * (generation 0: the first generation's variant), and GENOME holds the config's network type.
  * --generation picks the trials' random offsets; --index the genotype of GENOME (a number, or
  * "last"). Without --index: in a file of per-generation bests (evolve's best.genome, whose
  * records carry "# generation G") the record of generation G, or the last record and its
  * generation when --generation is not given either; otherwise the first genotype (the best in
  * population.genome) with generation 0. Prints the genotype chosen and a one-line summary.
  * --force overrides network output OUT (0..11 the DOF of SPEC §3, 12 focus) with VALUE (0..1)
- * from step STEP on (default 0): what the individual would do with, e.g., its thumb opposed. */
+ * from step STEP on (default 0): what the individual would do with, e.g., its thumb opposed.
+ *
+ * The trace has one row per step: joints, palm, object, target, touch, focus, the linguistic
+ * inputs, S, P, events, the fitness quantities, then the caretaker's word given at the step
+ * (-1 none; in primitive trials the trial's word), the self-talk label produced at the step (a
+ * type A network; -1 otherwise), the four linguistic outputs (type A) and the four
+ * hidden-linguistic values (type B), empty where the network has none. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app_common.h"
+#include "selftalk/integrated.h"
 #include "selftalk/trial.h"
 
 static const char *prog = "replay";
@@ -57,8 +67,7 @@ static stForce force_arg(const char *v) {
 
 typedef struct traceCtx {
   FILE *f;
-  const stProtocol *p;
-  const stTrialSpec *t;
+  stNetArch arch;
 } traceCtx;
 
 static void header(FILE *f) {
@@ -67,7 +76,20 @@ static void header(FILE *f) {
   fprintf(f, ",palm_x,palm_y,palm_z,obj_x,obj_y,obj_z,target_x,target_y,target_z");
   for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",touch%d", i);
   fprintf(f, ",focus_out,focus_target,ling_reach,ling_open,ling_grasp,ling_move,S,P,success_now,"
-             "event,d_r,d_g,d_m,d_mhat,h,p,touching,lifted\n");
+             "event,d_r,d_g,d_m,d_mhat,h,p,touching,lifted,caretaker_word,selftalk_label,lo_reach,"
+             "lo_open,lo_grasp,lo_move,hl_0,hl_1,hl_2,hl_3\n");
+}
+
+/* the words and the linguistic cluster: type A's outputs, type B's hidden-linguistic values */
+static void language(FILE *f, stNetArch arch, const stTraceStep *s) {
+  const int given = s->source == ST_WORDS_CARETAKER || s->source == ST_WORDS_FIXED;
+  fprintf(f, ",%d,%d", given ? s->word : -1, s->label);
+  for (int k = 0; k < 2; k++) {
+    const int show = s->nout >= ST_NET_MAX_OUT && arch == (k ? ST_ARCH_B : ST_ARCH_A);
+    for (int m = 0; m < ST_NET_NLING; m++)
+      if (show) fprintf(f, ",%.17g", s->out[ST_NET_NOUT + m]); /* exact: score can re-read it */
+      else fputc(',', f);
+  }
 }
 
 static void on_step(void *ctx, const stTraceStep *s) {
@@ -82,10 +104,85 @@ static void on_step(void *ctx, const stTraceStep *s) {
   for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",%d", w->contacts.touch[i]);
   fprintf(f, ",%.9g,%d", s->out[ST_NET_OUT_FOCUS], s->focus_target);
   for (int m = 0; m < ST_NET_NLING; m++) fprintf(f, ",%g", s->in[ST_NET_IN_LING + m]);
-  fprintf(f, ",%.9g,%.9g,%d,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d\n", s->S, s->P, s->success_now,
+  fprintf(f, ",%.9g,%.9g,%d,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", s->S, s->P, s->success_now,
           s->event == ST_END_SUCCESS ? "end_success" : s->event == ST_END_FAILURE ? "end_failure"
           : s->event == ST_END_QUIET ? "end_quiet" : "", q->d_r, q->d_g, q->d_m, q->d_mhat, q->h,
           q->p, q->touching, q->lifted);
+  language(f, c->arch, s);
+  fputc('\n', f);
+}
+
+static const char *const ENDS[] = {"full", "success", "failure", "quiet"};
+
+/* a primitive trial and its share of F_p (the primitive's N_p spans its four trials) */
+static void replay_primitive(const stProtocol *p, stStage stage, int generation, int index,
+                             int trial, const stNetParams *np, const stForce *force, int nforce,
+                             FILE *f) {
+  stTrialSpec t;
+  st_trial_spec(p, stage, generation, trial, &t);
+  traceCtx ctx = {f, ST_ARCH_BASE};
+  stWorkspace ws = {NULL, NULL};
+  stTrialResult r;
+  char err[1024];
+  uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
+                              (uint64_t)index, (uint64_t)trial).key;
+  if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, f ? on_step : NULL, &ctx, err,
+                          sizeof err))
+    app_die(prog, "%s", err);
+  st_workspace_free(&ws);
+  long n_p = 0;
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    stTrialSpec o;
+    st_trial_spec(p, stage, generation, t.primitive * ST_NPOSTURE + k, &o);
+    n_p += o.steps;
+  }
+  double share = (r.success ? p->fitness.bonus : 0.0) + p->fitness.scale / (double)n_p * (r.sum_s - r.sum_p);
+  printf("trial %d %s %s k=%d success=%d steps=%ld/%d end=%s first_success_step=%d sum_S=%.6f "
+         "sum_P=%.6f F_contribution=%.6f\n",
+         trial, st_stage_name(stage), st_primitive_name(t.primitive), t.k, r.success, r.steps_run,
+         t.steps, ENDS[r.end], r.success_step, r.sum_s, r.sum_p, share);
+}
+
+/* an integrated trial: what it heard, how it ended, its bonus and points (eq. 2.14) and, for a
+ * prediction trial, its prediction score (whether or not its object reached the target) */
+static void replay_integrated(const stProtocol *p, int generation, int index, int trial,
+                              const stNetParams *np, FILE *f) {
+  stIntegratedDef def;
+  st_integrated_def_from_config(&p->cfg, &def);
+  if (trial >= def.trials) app_die(prog, "--trial %d: expected 0..%d", trial, def.trials - 1);
+  traceCtx ctx = {f, def.arch};
+  stWorkspace ws = {NULL, NULL};
+  stIntPlan plan;
+  stIntTrialResult r;
+  stPredScore pred;
+  char err[1024];
+  if (st_int_trial_run(p, &def, &ws, generation, index, trial, np, &plan, &r, &pred,
+                       f ? on_step : NULL, &ctx, err, sizeof err))
+    app_die(prog, "%s", err);
+  st_workspace_free(&ws);
+  printf("trial %d integrated k=%d words=%s fitness=%s success=%d steps=%ld/%ld end=%s "
+         "reached_step=%d sum_S=%.17g sum_P=%.17g focus_bonus=%d move_bonus=%d bonus=%.17g "
+         "points=%.17g", trial, trial % ST_NPOSTURE, st_word_source_name(plan.words),
+         st_int_fitness_name(plan.fitness), r.success, r.steps_run, r.steps, ENDS[r.end],
+         r.reached_step, r.sum_s, r.sum_p, r.focus_bonus, r.success,
+         st_int_trial_bonus(&r, p->fitness.bonus, plan.bonus_factor), st_int_trial_points(&r));
+  if (plan.fitness == ST_FIT_PREDICTION)
+    printf(" reached=%d F_step=%.17g F_switch=%.17g B_pred=%.17g", r.reached_step >= 0,
+           pred.f_step, pred.f_switch, pred.b_pred);
+  printf("\n");
+}
+
+/* without --index: see the header comment */
+static int pick_index(const stGenomeSet *set, const char *genome, int generation) {
+  int history = set->count > 0 && set->generation[0] >= 0;
+  for (int k = 1; history && k < set->count; k++) history = set->generation[k] > set->generation[k - 1];
+  if (!history) return 0;
+  if (generation < 0) return set->count - 1;
+  for (int k = 0; k < set->count; k++)
+    if (set->generation[k] == generation) return k;
+  app_die(prog, "--generation %d: %s has no genotype of that generation (it has %d..%d); "
+          "give --index to replay another generation's genotype with these offsets",
+          generation, genome, set->generation[0], set->generation[set->count - 1]);
 }
 
 int main(int argc, char **argv) {
@@ -117,11 +214,16 @@ int main(int argc, char **argv) {
   if (!genome || !ca.config_path)
     app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] "
                   "[--generation G] [--index I] [--force OUT=VALUE[@STEP]]...");
-  if (trial < 0 || trial >= ST_PRIM_TRIALS) app_die(prog, "--trial: expected 0..%d", ST_PRIM_TRIALS - 1);
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
-  stStage stage = cfg.stage_stages == 1 ? ST_STAGE_MAIN : ST_STAGE_SIMPLE;
-  if (!stage_name && cfg.stage_stages == 2)
+  const int integrated = cfg.stage_stages == ST_STAGES_INTEGRATED;
+  if (trial < 0) app_die(prog, "--trial K is required");
+  if (!integrated && trial >= ST_PRIM_TRIALS) app_die(prog, "--trial: expected 0..%d", ST_PRIM_TRIALS - 1);
+  if (integrated && (stage_name || nforce))
+    app_die(prog, "%s is an integrated-stage config: --stage and --force apply to primitive trials",
+            ca.config_path);
+  stStage stage = cfg.stage_stages == ST_STAGES_MAIN ? ST_STAGE_MAIN : ST_STAGE_SIMPLE;
+  if (!stage_name && cfg.stage_stages == ST_STAGES_PRIMS)
     app_die(prog, "%s runs simple-prim then main-prim: give --stage simple or --stage main",
             ca.config_path);
   if (stage_name) {
@@ -129,63 +231,27 @@ int main(int argc, char **argv) {
     else if (!strcmp(stage_name, "main")) stage = ST_STAGE_MAIN;
     else app_die(prog, "--stage '%s': expected simple or main", stage_name);
   }
+  const stNetArch arch = integrated ? (stNetArch)cfg.network_arch : ST_ARCH_BASE;
   char err[1024];
   stGenomeSet set;
-  if (st_genome_set_read(genome, ST_GENES_BASE, &set, err, sizeof err)) app_die(prog, "%s", err);
+  if (st_genome_set_read(genome, st_arch_ngenes(arch), &set, err, sizeof err)) app_die(prog, "%s", err);
   if (index_last) index = set.count - 1;
   if (index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
-  if (index < 0) { /* not given: see the header comment */
-    int history = set.count > 0 && set.generation[0] >= 0;
-    for (int k = 1; history && k < set.count; k++) history = set.generation[k] > set.generation[k - 1];
-    index = 0;
-    if (history && generation < 0) index = set.count - 1;
-    else if (history) {
-      index = -1;
-      for (int k = 0; k < set.count && index < 0; k++)
-        if (set.generation[k] == generation) index = k;
-      if (index < 0)
-        app_die(prog, "--generation %d: %s has no genotype of that generation (it has %d..%d); "
-                "give --index to replay another generation's genotype with these offsets",
-                generation, genome, set.generation[0], set.generation[set.count - 1]);
-    }
-  }
+  if (index < 0) index = pick_index(&set, genome, generation);
   if (generation < 0) generation = set.generation[index] >= 0 ? set.generation[index] : 0;
   fprintf(stderr, "replay: genotype %d of %s, trial offsets of generation %d\n", index, genome,
           generation);
   stProtocol *p = NULL;
   if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
   stNetParams np;
-  if (st_net_decode(&p->net, ST_ARCH_BASE, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
+  if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);
-
-  stTrialSpec t;
-  st_trial_spec(p, stage, generation, trial, &t);
   FILE *f = NULL;
   if (out && !(f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
   if (f) header(f);
-  traceCtx ctx = {f, p, &t};
-  stWorkspace ws = {NULL, NULL};
-  stTrialResult r;
-  uint64_t key = st_rng_keyed((uint64_t)cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
-                              (uint64_t)index, (uint64_t)trial).key;
-  if (st_trial_run_forced(p, &ws, &t, &np, force, nforce, key, &r, f ? on_step : NULL, &ctx, err,
-                          sizeof err))
-    app_die(prog, "%s", err);
+  if (integrated) replay_integrated(p, generation, index, trial, &np, f);
+  else replay_primitive(p, stage, generation, index, trial, &np, force, nforce, f);
   if (f && fclose(f) != 0) app_die(prog, "%s: write error", out);
-  /* this trial's share of F_p: the primitive's N_p spans its four trials */
-  long n_p = 0;
-  for (int k = 0; k < ST_NPOSTURE; k++) {
-    stTrialSpec o;
-    st_trial_spec(p, stage, generation, t.primitive * ST_NPOSTURE + k, &o);
-    n_p += o.steps;
-  }
-  double share = (r.success ? p->fitness.bonus : 0.0) + p->fitness.scale / (double)n_p * (r.sum_s - r.sum_p);
-  static const char *ends[] = {"full", "success", "failure", "quiet"};
-  printf("trial %d %s %s k=%d success=%d steps=%ld/%d end=%s first_success_step=%d sum_S=%.6f "
-         "sum_P=%.6f F_contribution=%.6f\n",
-         trial, st_stage_name(stage), st_primitive_name(t.primitive), t.k, r.success, r.steps_run,
-         t.steps, ends[r.end], r.success_step, r.sum_s, r.sum_p, share);
-  st_workspace_free(&ws);
   st_protocol_destroy(p);
   return 0;
 }

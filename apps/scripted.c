@@ -11,7 +11,8 @@
  *   trial integrated move-object-to-target K success=0|1 steps=N   (K = 2 posture + target)
  * then "scripted: N passed, M failed"; exits 0 only when every trial run succeeded. Main-prim
  * trials are those of generation 0 (their random offsets), scored by the library; steps is
- * the number of control steps simulated; integrated trials last at most 12 s. --trace DIR
+ * the number of control steps simulated; integrated trials last at most integrated.steps
+ * (240: 12 s). --trace DIR
  * writes DIR/main_PRIMITIVE_K.csv and DIR/integrated_K.csv, one row per step: qhat and the
  * commands y, palm centre and normal z, object, target, touch sensors on the object, focus
  * output, the word given, S, P, success_now, end event, the fitness quantities, the contact
@@ -59,9 +60,7 @@ static void on_step(void *ctx, const stTraceStep *s) {
           q->palm[2], q->normal[2], w->obj[0], w->obj[1], w->obj[2], w->target[0], w->target[1],
           w->target[2]);
   for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",%d", w->contacts.touch_object[i]);
-  int word = -1;
-  for (int m = 0; m < ST_NET_NLING; m++)
-    if (s->in[ST_NET_IN_LING + m] > 0) word = m;
+  const int word = s->word;
   fprintf(f, ",%.3f,%s,%.5f,%.5f,%d,%s,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%d,%d,%d,%d,%s\n",
           s->out[ST_NET_OUT_FOCUS], word >= 0 ? st_primitive_name(word) : "", s->S, s->P,
           s->success_now,
@@ -112,7 +111,6 @@ int main(int argc, char **argv) {
   stProtocol *p = NULL;
   if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
 
-  const int int_steps = (int)(12.0 / cfg.robot_control_dt + 0.5); /* 12 s (thesis 2.9) */
   int run[NALL], success[NALL], steps[NALL], failed_setup = 0;
   char why[NALL][1100];
   for (int i = 0; i < NALL; i++) {
@@ -149,12 +147,12 @@ int main(int argc, char **argv) {
         }
       } else {
         const int k = (i - NMAIN) / 2, t = (i - NMAIN) % 2;
-        stIntegratedResult r;
-        st = st_scripted_integrated(p, &ws, s, k, t, int_steps, &r, tc.f ? on_step : NULL, &tc,
-                                    terr, sizeof terr);
+        stIntTrialResult r;
+        st = st_scripted_integrated(p, &ws, s, k, t, &r, tc.f ? on_step : NULL, &tc, terr,
+                                    sizeof terr);
         if (!st) {
           success[i] = r.success;
-          steps[i] = r.steps;
+          steps[i] = (int)r.steps_run;
         }
       }
       if (st) snprintf(why[i], sizeof why[i], "%s", terr);

@@ -12,6 +12,7 @@
 #include <strings.h>
 
 #include "internal.h"
+#include "selftalk/genome.h"
 
 /* ---- the key table, generated from ST_CONFIG_KEYS ---- */
 
@@ -177,8 +178,49 @@ unsigned st_config_primitive_mask(const stConfig *cfg) {
   return mask;
 }
 
+/* the integrated stage's rules (Table 2.1): the network must have the cluster the words and
+ * the fitness use; returns the key blamed or -1 */
+static int check_integrated(const stConfig *c, char *msg, size_t n) {
+  if (c->stage_stages != ST_STAGES_INTEGRATED) return -1;
+  if (c->network_arch != ST_ARCH_A && c->network_arch != ST_ARCH_B) {
+    snprintf(msg, n, "'base' cannot run the integrated stage (expected A or B)");
+    return st_config_find("network", "arch");
+  }
+  const int words[2] = {c->integrated_words_even, c->integrated_words_odd};
+  const int fit[2] = {c->integrated_fitness_even, c->integrated_fitness_odd};
+  static const char *const parity[2] = {"even", "odd"};
+  for (int k = 0; k < 2; k++) {
+    char key[32];
+    if (words[k] == ST_CFG_WORDS_SELFTALK && c->network_arch != ST_ARCH_A) {
+      snprintf(msg, n, "self talk needs linguistic outputs (expected network.arch = A)");
+      snprintf(key, sizeof key, "words_%s", parity[k]);
+      return st_config_find("integrated", key);
+    }
+    if (fit[k] == ST_CFG_FIT_PREDICTION &&
+        (words[k] != ST_CFG_WORDS_CARETAKER || c->network_arch != ST_ARCH_A)) {
+      snprintf(msg, n, "the prediction fitness judges a type A network's outputs against the "
+               "caretaker's words (expected integrated.words_%s = caretaker, network.arch = A)",
+               parity[k]);
+      snprintf(key, sizeof key, "fitness_%s", parity[k]);
+      return st_config_find("integrated", key);
+    }
+    if (fit[k] == ST_CFG_FIT_PREDICTION && c->caretaker_first_step != 1) {
+      snprintf(msg, n, "%d: the prediction fitness needs a word at every step after the first "
+               "(expected 1)", c->caretaker_first_step);
+      return st_config_find("caretaker", "first_step");
+    }
+  }
+  if (!c->integrated_populations[0]) {
+    snprintf(msg, n, "empty (expected the primitive-stage population files to start from)");
+    return st_config_find("integrated", "populations");
+  }
+  return -1;
+}
+
 /* cross-key rules; returns the key index blamed and a message, or -1 */
 static int check_rules(const stConfig *c, char *msg, size_t n) {
+  const int k = check_integrated(c, msg, n);
+  if (k >= 0) return k;
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
              "reach,open,grasp,move)", c->stage_primitives);
@@ -194,7 +236,8 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
              c->ga_parents, c->ga_population);
     return st_config_find("ga", "parents");
   }
-  if (c->ga_success_genotypes > c->ga_population) {
+  /* the primitive stages' termination; the integrated stage runs its generations */
+  if (c->stage_stages != ST_STAGES_INTEGRATED && c->ga_success_genotypes > c->ga_population) {
     snprintf(msg, n, "%d exceeds ga.population = %d (expected success_genotypes <= population)",
              c->ga_success_genotypes, c->ga_population);
     return st_config_find("ga", "success_genotypes");

@@ -12,7 +12,9 @@
 #include <unistd.h>
 
 #include "internal.h"
+#include "selftalk/assemble.h"
 #include "selftalk/ga.h"
+#include "selftalk/integrated.h"
 #include "selftalk/io.h"
 #include "selftalk/trial.h"
 
@@ -23,6 +25,8 @@ typedef struct run {
   const stConfig *cfg;
   stProtocol *proto;
   stGa *ga;
+  int integrated;     /* the integrated stage (thesis 2.9); else the primitive stages */
+  stIntegratedDef idef;
   stStage stages[2];
   int nstages;
   int stage_idx;      /* index into stages */
@@ -30,8 +34,13 @@ typedef struct run {
   int limit;          /* total generations allowed */
   int threads;
   stWorkspace *ws;    /* one per thread */
-  stEvaluation *eval; /* per individual */
+  stEvaluation *eval; /* per individual (primitive stages) */
+  stIntEvaluation *ieval; /* per individual (integrated stage) */
   double *fitness;
+  stGenome *sorted;   /* the final population, best first */
+  double *sorted_fit;
+  double t_start;
+  int done_here;      /* generations run by this process */
   char path[6][ST_PATH_MAX];
 } run;
 
@@ -137,9 +146,26 @@ static stStatus read_checkpoint(const char *path, ckpt *c, char *err, size_t err
 
 /* ---- evaluation ---- */
 
+static const char *stage_label(const run *R) {
+  return R->integrated ? "integrated" : st_stage_name(R->stages[R->stage_idx]);
+}
+
+/* genotype i of the current generation: its fitness, or NAN and a message */
+static stStatus evaluate_one(run *R, stWorkspace *ws, int generation, int i, char *e, size_t n) {
+  stNetParams np;
+  const stNetArch arch = R->integrated ? R->idef.arch : ST_ARCH_BASE;
+  stStatus st = st_net_decode(&R->proto->net, arch, st_ga_genome(R->ga, i), &np, e, n);
+  if (!st && R->integrated)
+    st = st_int_evaluate(R->proto, &R->idef, ws, generation, i, &np, &R->ieval[i], e, n);
+  else if (!st)
+    st = st_stage_evaluate(R->proto, ws, R->stages[R->stage_idx], generation, i, &np, &R->eval[i],
+                           e, n);
+  R->fitness[i] = st ? NAN : R->integrated ? R->ieval[i].fitness : R->eval[i].fitness;
+  return st;
+}
+
 static stStatus evaluate(run *R, int generation, char *err, size_t errsz) {
   const stGaDef *gd = st_ga_def(R->ga);
-  const stStage stage = R->stages[R->stage_idx];
   int failed = -1;
   stStatus first = ST_OK;
   char msg[512] = "";
@@ -148,11 +174,8 @@ static stStatus evaluate(run *R, int generation, char *err, size_t errsz) {
     stWorkspace *ws = &R->ws[omp_get_thread_num()];
 #pragma omp for schedule(dynamic, 1)
     for (int i = 0; i < gd->population; i++) {
-      stNetParams np;
       char e[512];
-      stStatus st = st_net_decode(&R->proto->net, ST_ARCH_BASE, st_ga_genome(R->ga, i), &np, e, sizeof e);
-      if (!st) st = st_stage_evaluate(R->proto, ws, stage, generation, i, &np, &R->eval[i], e, sizeof e);
-      R->fitness[i] = st ? NAN : R->eval[i].fitness;
+      stStatus st = evaluate_one(R, ws, generation, i, e, sizeof e);
       if (st) {
 #pragma omp critical
         if (failed < 0 || i < failed) {
@@ -184,11 +207,16 @@ static stStatus append(const char *path, const char *text, char *err, size_t err
   return ST_OK;
 }
 
-static void csv_header(char *buf, size_t n) {
-  int k = snprintf(buf, n,
-                   "generation,best,mean,worst,best_bonus,stage,stage_generation,all_success,"
-                   "best_successes,best_F_reach,best_F_open,best_F_grasp,best_F_move");
-  for (int t = 0; t < ST_PRIM_TRIALS && k < (int)n; t++) k += snprintf(buf + k, n - (size_t)k, ",best_t%d", t);
+/* fitness.csv's columns; then one best_tI column per trial */
+static void csv_header(const run *R, char *buf, size_t n) {
+  int k = snprintf(buf, n, "%s",
+                   R->integrated
+                       ? "generation,best,mean,worst,best_F_int,best_F_pred,best_bonus,"
+                         "best_bonus_auto,best_successes"
+                       : "generation,best,mean,worst,best_bonus,stage,stage_generation,all_success,"
+                         "best_successes,best_F_reach,best_F_open,best_F_grasp,best_F_move");
+  const int trials = R->integrated ? R->idef.trials : ST_PRIM_TRIALS;
+  for (int t = 0; t < trials && k < (int)n; t++) k += snprintf(buf + k, n - (size_t)k, ",best_t%d", t);
   if (k < (int)n) snprintf(buf + k, n - (size_t)k, "\n");
 }
 
@@ -199,7 +227,7 @@ static stStatus start_files(run *R, char *err, size_t errsz) {
   st_config_write(af.f, R->cfg);
   if ((st = st_atomic_commit(&af, err, errsz))) return st;
   char hdr[1024];
-  csv_header(hdr, sizeof hdr);
+  csv_header(R, hdr, sizeof hdr);
   FILE *f = fopen(R->path[P_CSV], "w");
   if (!f || fputs(hdr, f) < 0 || fclose(f) != 0) {
     st__errf(err, errsz, "%s: cannot write: %s", R->path[P_CSV], strerror(errno));
@@ -232,6 +260,9 @@ static stStatus same_config(run *R, char *err, size_t errsz) {
   return ST_OK;
 }
 
+/* ---- the initial population ---- */
+
+/* primitive stages: stage.init_population, or none (random genotypes) */
 static stStatus load_initial(run *R, stGenomeSet *set, char *err, size_t errsz) {
   const char *path = R->cfg->stage_init_population;
   memset(set, 0, sizeof *set);
@@ -247,177 +278,292 @@ static stStatus load_initial(run *R, stGenomeSet *set, char *err, size_t errsz) 
   return ST_OK;
 }
 
+/* integrated stage: the top genotypes of the primitive runs, grown (selftalk/assemble.h) */
+static stStatus assemble_initial(run *R, stGenomeSet *set, char *err, size_t errsz) {
+  stAssembly a;
+  stStatus st = st_assemble_population(R->cfg, &a, err, errsz);
+  if (st) return st;
+  memset(set, 0, sizeof *set);
+  set->count = a.count;
+  set->genome = a.genome; /* handed over: st_genome_set_free frees it */
+  if (R->def->progress)
+    fprintf(R->def->progress, "evolve: integrated stage (network %s) from the top %d of %d "
+            "population files: %d genotypes%s\n", st_arch_name(R->idef.arch), R->cfg->integrated_top,
+            a.nfiles, a.taken, a.taken < a.count ? ", repeated to fill the population" : "");
+  return ST_OK;
+}
+
+/* the GA: base genotypes and every bit mutable (primitive stages), or the integrated network's
+ * genotypes with only the new genes mutable at the integrated rate */
+static stStatus make_ga(run *R, const stGenome *pop0, int npop0, char *err, size_t errsz) {
+  const stConfig *cfg = R->cfg;
+  stGaDef gd = st_ga_default_def();
+  gd.population = cfg->ga_population;
+  gd.elites = cfg->ga_elites;
+  gd.parents = cfg->ga_parents;
+  gd.mutation_rate = R->integrated ? cfg->ga_mutation_rate_integrated : cfg->ga_mutation_rate;
+  gd.seed = (uint64_t)cfg->run_seed;
+  gd.ngenes = R->integrated ? st_arch_ngenes(R->idef.arch) : ST_GENES_BASE;
+  uint8_t mask[ST_GENOME_MAX_GENES];
+  st_genome_mask_new_genes(mask, gd.ngenes);
+  return st_ga_create(&gd, pop0, npop0, R->integrated ? mask : NULL, &R->ga, err, errsz);
+}
+
+/* ---- one generation's records ---- */
+
+typedef struct genStats {
+  int best;
+  double mean, worst;
+  int all;      /* genotypes that solved every trial they were evaluated on */
+  int unstable; /* trials the simulation gave up on */
+} genStats;
+
+static genStats gen_stats(const run *R) {
+  const int n = st_ga_def(R->ga)->population;
+  genStats s = {st_ga_ranked(R->ga, 0), 0.0, INFINITY, 0, 0};
+  for (int i = 0; i < n; i++) {
+    s.mean += R->fitness[i] / n;
+    if (R->fitness[i] < s.worst) s.worst = R->fitness[i];
+    if (R->integrated) {
+      s.unstable += R->ieval[i].unstable;
+    } else {
+      s.unstable += R->eval[i].unstable;
+      s.all += R->eval[i].successes == R->eval[i].ntrials; /* every trial it is evaluated on */
+    }
+  }
+  return s;
+}
+
+static void csv_row(const run *R, int gen, const genStats *s, char *row, size_t n) {
+  int k;
+  if (R->integrated) {
+    const stIntEvaluation *be = &R->ieval[s->best];
+    k = snprintf(row, n, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d", gen, R->fitness[s->best],
+                 s->mean, s->worst, be->f_int, be->f_pred, be->bonus, be->bonus_auto, be->successes);
+    for (int t = 0; t < be->ntrials; t++) k += snprintf(row + k, n - (size_t)k, ",%d", be->success[t]);
+  } else {
+    const stEvaluation *be = &R->eval[s->best];
+    k = snprintf(row, n, "%d,%.17g,%.17g,%.17g,%.17g,%s,%d,%d,%d,%.17g,%.17g,%.17g,%.17g", gen,
+                 R->fitness[s->best], s->mean, s->worst, R->cfg->fitness_bonus * be->successes,
+                 stage_label(R), R->stage_gen, s->all, be->successes, be->fp[0], be->fp[1], be->fp[2],
+                 be->fp[3]);
+    for (int t = 0; t < ST_PRIM_TRIALS; t++) k += snprintf(row + k, n - (size_t)k, ",%d", be->success[t]);
+  }
+  snprintf(row + k, n - (size_t)k, "\n");
+}
+
+/* the generation's fitness.csv row and its best genotype, appended and synced */
+static stStatus write_records(run *R, int gen, const genStats *s, char *err, size_t errsz) {
+  char row[2048];
+  csv_row(R, gen, s, row, sizeof row);
+  stStatus st = append(R->path[P_CSV], row, err, errsz);
+  if (st) return st;
+  char bg[4 * ST_GENOME_MAX_GENES + 256];
+  int b = snprintf(bg, sizeof bg, "# generation %d\n# stage %s\n# fitness %.17g\n", gen, stage_label(R),
+                   R->fitness[s->best]);
+  const stGenome *g = st_ga_genome(R->ga, s->best);
+  for (int i = 0; i < g->ngenes; i++) b += snprintf(bg + b, sizeof bg - (size_t)b, "%04x", g->gene[i]);
+  snprintf(bg + b, sizeof bg - (size_t)b, "\n");
+  return append(R->path[P_BEST], bg, err, errsz);
+}
+
+static void progress(const run *R, int gen, const genStats *s) {
+  FILE *f = R->def->progress;
+  if (!f) return;
+  double el = now() - R->t_start, rate = R->done_here / (el > 0 ? el : 1e-9);
+  char e1[32], e2[32];
+  hms(el, e1, sizeof e1);
+  hms((R->limit - gen - 1) / rate, e2, sizeof e2);
+  /* trials the simulation gave up on (scored as failures): rare, but a user must see them */
+  char unst[48] = "";
+  if (s->unstable) snprintf(unst, sizeof unst, " | %d unstable trials", s->unstable);
+  if (R->integrated) {
+    const stIntEvaluation *be = &R->ieval[s->best];
+    fprintf(f, "gen %4d integrated best %8.3f mean %8.3f F_int %8.3f F_pred %8.3f bonus %4.0f "
+            "auto %4.0f solves %2d/%d | %.2f gen/s elapsed %s left <= %s%s\n",
+            gen, R->fitness[s->best], s->mean, be->f_int, be->f_pred, be->bonus, be->bonus_auto,
+            be->successes, be->ntrials, rate, e1, e2, unst);
+  } else {
+    const stEvaluation *be = &R->eval[s->best];
+    fprintf(f,
+            "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/%d all-solved %3d | "
+            "%.2f gen/s elapsed %s left <= %s%s\n",
+            gen, stage_label(R), R->fitness[s->best], s->mean, R->cfg->fitness_bonus * be->successes,
+            be->successes, be->ntrials, s->all, rate, e1, e2, unst);
+  }
+  fflush(f);
+}
+
+/* the final population, best first, with its fitness, and the last checkpoint */
+static stStatus finish(run *R, int gen, int stage_complete, char *err, size_t errsz) {
+  const int n = st_ga_def(R->ga)->population;
+  for (int r = 0; r < n; r++) {
+    R->sorted[r] = *st_ga_genome(R->ga, st_ga_ranked(R->ga, r));
+    R->sorted_fit[r] = R->fitness[st_ga_ranked(R->ga, r)];
+  }
+  stStatus st = st_genome_set_save(R->path[P_POP], R->sorted, n, R->sorted_fit, NULL, err, errsz);
+  if (!st) st = write_checkpoint(R, gen + 1, 1, R->sorted, n, err, errsz);
+  if (R->def->progress && !st)
+    fprintf(R->def->progress, "evolve: stopped after generation %d (%s); files in %s\n", gen,
+            stage_complete ? "all stages complete" : "generation limit", R->def->out_dir);
+  return st;
+}
+
+/* primitive stages: the evaluated population moves to the next stage unchanged (thesis 2.4),
+ * to be evaluated again there as the next generation; returns 1 when there is none */
+static int next_stage(run *R, int gen, int all, stStatus *st, char *err, size_t errsz) {
+  const int n = st_ga_def(R->ga)->population;
+  if (R->def->progress)
+    fprintf(R->def->progress, "evolve: %s complete at generation %d (%d genotypes solve all 16 trials)\n",
+            stage_label(R), gen, all);
+  if (R->stage_idx + 1 >= R->nstages) return 1;
+  R->stage_idx++;
+  R->stage_gen = 0;
+  stGenome *same = malloc(sizeof *same * (size_t)n);
+  for (int i = 0; i < n; i++) same[i] = *st_ga_genome(R->ga, i);
+  *st = st_ga_restore(R->ga, gen + 1, same, n, err, errsz);
+  free(same);
+  return 0;
+}
+
+/* breeds the next generation and checkpoints it */
+static stStatus breed(run *R, int stage_complete, char *err, size_t errsz) {
+  const int n = st_ga_def(R->ga)->population;
+  stStatus st = stage_complete ? ST_OK : st_ga_next(R->ga);
+  if (st) return st;
+  stGenome *pop = malloc(sizeof *pop * (size_t)n);
+  for (int i = 0; i < n; i++) pop[i] = *st_ga_genome(R->ga, i);
+  st = write_checkpoint(R, st_ga_generation(R->ga), 0, pop, n, err, errsz);
+  free(pop);
+  return st;
+}
+
+/* one generation: evaluate, record, then the next stage, the end, or the next generation;
+ * sets *stop when the run is over */
+static stStatus generation(run *R, int *stop, char *err, size_t errsz) {
+  const int gen = st_ga_generation(R->ga);
+  stStatus st = evaluate(R, gen, err, errsz);
+  if (st) return st;
+  st_ga_tell(R->ga, R->fitness);
+  const genStats s = gen_stats(R);
+  if ((st = write_records(R, gen, &s, err, errsz))) return st;
+  R->done_here++;
+  R->stage_gen++;
+  progress(R, gen, &s);
+  /* the integrated stage always runs its generations (thesis 2.4) */
+  const int stage_complete = !R->integrated && s.all >= R->cfg->ga_success_genotypes;
+  *stop = stage_complete && next_stage(R, gen, s.all, &st, err, errsz);
+  if (gen + 1 >= R->limit) *stop = 1;
+  if (st) return st;
+  if (*stop) return finish(R, gen, stage_complete, err, errsz);
+  return breed(R, stage_complete, err, errsz);
+}
+
+/* ---- the run ---- */
+
+/* which stages, how many generations, how many threads */
+static void plan_run(run *R, const stEvolveDef *def) {
+  const stConfig *cfg = def->cfg;
+  R->integrated = cfg->stage_stages == ST_STAGES_INTEGRATED;
+  st_integrated_def_from_config(cfg, &R->idef);
+  switch (cfg->stage_stages) {
+    case ST_STAGES_SIMPLE: R->stages[R->nstages++] = ST_STAGE_SIMPLE; break;
+    case ST_STAGES_MAIN: R->stages[R->nstages++] = ST_STAGE_MAIN; break;
+    case ST_STAGES_PRIMS:
+      R->stages[R->nstages++] = ST_STAGE_SIMPLE;
+      R->stages[R->nstages++] = ST_STAGE_MAIN;
+      break;
+    default: R->stages[R->nstages++] = ST_STAGE_MAIN; /* integrated: dynamic, like main-prim */
+  }
+  const int cap = R->integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations;
+  R->limit = def->generations > 0 ? def->generations : cap;
+  R->threads = def->threads > 0 ? def->threads : cfg->run_threads > 0 ? cfg->run_threads : omp_get_num_procs();
+}
+
+/* the population to start from: the checkpoint's (resuming), else the stage's initial one;
+ * *done when the checkpointed run is complete */
+static stStatus start_population(run *R, int *have_ckpt, int *done, char *err, size_t errsz) {
+  const stEvolveDef *def = R->def;
+  ckpt ck;
+  memset(&ck, 0, sizeof ck);
+  *have_ckpt = def->resume && file_size(R->path[P_CKPT]) >= 0;
+  *done = 0;
+  if (def->resume && !*have_ckpt && def->progress)
+    fprintf(def->progress, "evolve: no checkpoint in %s: starting fresh\n", def->out_dir);
+  stGenomeSet init;
+  memset(&init, 0, sizeof init);
+  stStatus st = ST_OK;
+  if (*have_ckpt) {
+    if ((st = same_config(R, err, errsz))) return st;
+    if ((st = read_checkpoint(R->path[P_CKPT], &ck, err, errsz))) return st;
+    if (ck.done) {
+      if (def->progress) fprintf(def->progress, "evolve: the run in %s is complete\n", def->out_dir);
+      st_genome_set_free(&ck.pop);
+      *done = 1;
+      return ST_OK;
+    }
+    /* cut the appended files back to the checkpoint's generation */
+    if (truncate(R->path[P_CSV], ck.csv_bytes) != 0 || truncate(R->path[P_BEST], ck.best_bytes) != 0) {
+      st__errf(err, errsz, "cannot resume: %s: %s", def->out_dir, strerror(errno));
+      st_genome_set_free(&ck.pop);
+      return ST_ERR_IO;
+    }
+    R->stage_idx = ck.stage_idx;
+    R->stage_gen = ck.stage_gen;
+  } else {
+    st = R->integrated ? assemble_initial(R, &init, err, errsz) : load_initial(R, &init, err, errsz);
+    if (st) return st;
+  }
+  const stGenome *pop0 = *have_ckpt ? ck.pop.genome : init.count ? init.genome : NULL;
+  const int npop0 = *have_ckpt ? ck.pop.count : init.count;
+  st = make_ga(R, pop0, npop0, err, errsz);
+  if (!st && *have_ckpt) st = st_ga_restore(R->ga, ck.generation, ck.pop.genome, ck.pop.count, err, errsz);
+  st_genome_set_free(&ck.pop);
+  st_genome_set_free(&init);
+  return st;
+}
+
+static stStatus allocate(run *R, char *err, size_t errsz) {
+  const size_t n = (size_t)R->cfg->ga_population;
+  R->ws = calloc((size_t)R->threads, sizeof *R->ws);
+  R->eval = calloc(n, sizeof *R->eval);
+  R->ieval = calloc(n, sizeof *R->ieval);
+  R->fitness = calloc(n, sizeof *R->fitness);
+  R->sorted = calloc(n, sizeof *R->sorted);
+  R->sorted_fit = calloc(n, sizeof *R->sorted_fit);
+  if (R->ws && R->eval && R->ieval && R->fitness && R->sorted && R->sorted_fit) return ST_OK;
+  st__errf(err, errsz, "evolve: out of memory");
+  return ST_ERR_NOMEM;
+}
+
+static void release(run *R) {
+  for (int t = 0; R->ws && t < R->threads; t++) st_workspace_free(&R->ws[t]);
+  free(R->ws);
+  free(R->eval);
+  free(R->ieval);
+  free(R->fitness);
+  free(R->sorted);
+  free(R->sorted_fit);
+  st_ga_destroy(R->ga);
+  st_protocol_destroy(R->proto);
+}
+
 stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   run R;
   memset(&R, 0, sizeof R);
   R.def = def;
   R.cfg = def->cfg;
-  const stConfig *cfg = def->cfg;
-  stStatus st = st_config_validate(cfg, err, errsz);
+  stStatus st = st_config_validate(def->cfg, err, errsz);
   if (st) return st;
-  switch (cfg->stage_stages) {
-    case 0: R.stages[R.nstages++] = ST_STAGE_SIMPLE; break;
-    case 1: R.stages[R.nstages++] = ST_STAGE_MAIN; break;
-    default:
-      R.stages[R.nstages++] = ST_STAGE_SIMPLE;
-      R.stages[R.nstages++] = ST_STAGE_MAIN;
-  }
-  R.limit = def->generations > 0 ? def->generations : cfg->ga_max_generations;
-  R.threads = def->threads > 0 ? def->threads : cfg->run_threads > 0 ? cfg->run_threads : omp_get_num_procs();
+  plan_run(&R, def);
   if ((st = prepare_dir(&R, err, errsz))) return st;
-
-  ckpt ck;
-  memset(&ck, 0, sizeof ck);
-  int have_ckpt = def->resume && file_size(R.path[P_CKPT]) >= 0;
-  if (def->resume && !have_ckpt && def->progress)
-    fprintf(def->progress, "evolve: no checkpoint in %s: starting fresh\n", def->out_dir);
-  stGenomeSet init;
-  memset(&init, 0, sizeof init);
-  if (have_ckpt) {
-    if ((st = same_config(&R, err, errsz))) return st;
-    if ((st = read_checkpoint(R.path[P_CKPT], &ck, err, errsz))) return st;
-    if (ck.done) {
-      if (def->progress) fprintf(def->progress, "evolve: the run in %s is complete\n", def->out_dir);
-      st_genome_set_free(&ck.pop);
-      return ST_OK;
-    }
-    /* cut the appended files back to the checkpoint's generation */
-    if (truncate(R.path[P_CSV], ck.csv_bytes) != 0 || truncate(R.path[P_BEST], ck.best_bytes) != 0) {
-      st__errf(err, errsz, "cannot resume: %s: %s", def->out_dir, strerror(errno));
-      st_genome_set_free(&ck.pop);
-      return ST_ERR_IO;
-    }
-    R.stage_idx = ck.stage_idx;
-    R.stage_gen = ck.stage_gen;
-  } else if ((st = load_initial(&R, &init, err, errsz))) {
-    return st;
-  }
-
-  stGaDef gd = st_ga_default_def();
-  gd.population = cfg->ga_population;
-  gd.elites = cfg->ga_elites;
-  gd.parents = cfg->ga_parents;
-  gd.mutation_rate = cfg->ga_mutation_rate;
-  gd.seed = (uint64_t)cfg->run_seed;
-  gd.ngenes = ST_GENES_BASE;
-  const stGenome *pop0 = have_ckpt ? ck.pop.genome : init.count ? init.genome : NULL;
-  int npop0 = have_ckpt ? ck.pop.count : init.count;
-  st = st_ga_create(&gd, pop0, npop0, NULL, &R.ga, err, errsz);
-  if (!st && have_ckpt) st = st_ga_restore(R.ga, ck.generation, ck.pop.genome, ck.pop.count, err, errsz);
-  st_genome_set_free(&ck.pop);
-  st_genome_set_free(&init);
-  if (st) return st;
-
-  if (!st) st = st_protocol_create(cfg, &R.proto, err, errsz);
-  if (!st && !have_ckpt) st = start_files(&R, err, errsz);
-  R.ws = calloc((size_t)R.threads, sizeof *R.ws);
-  R.eval = calloc((size_t)gd.population, sizeof *R.eval);
-  R.fitness = calloc((size_t)gd.population, sizeof *R.fitness);
-  stGenome *sorted = calloc((size_t)gd.population, sizeof *sorted);
-  double *sorted_fit = calloc((size_t)gd.population, sizeof *sorted_fit);
-  if (!st && (!R.ws || !R.eval || !R.fitness || !sorted || !sorted_fit)) {
-    st__errf(err, errsz, "evolve: out of memory");
-    st = ST_ERR_NOMEM;
-  }
-
-  const double t_start = now();
-  int done_here = 0;
-  while (!st) {
-    const int gen = st_ga_generation(R.ga);
-    const stStage stage = R.stages[R.stage_idx];
-    if ((st = evaluate(&R, gen, err, errsz))) break;
-    st_ga_tell(R.ga, R.fitness);
-    const int best = st_ga_ranked(R.ga, 0);
-    double mean = 0, worst = INFINITY;
-    int all = 0, unstable = 0;
-    for (int i = 0; i < gd.population; i++) {
-      unstable += R.eval[i].unstable;
-      mean += R.fitness[i] / gd.population;
-      if (R.fitness[i] < worst) worst = R.fitness[i];
-      all += R.eval[i].successes == R.eval[i].ntrials; /* every trial it is evaluated on */
-    }
-    const stEvaluation *be = &R.eval[best];
-    char row[2048];
-    int k = snprintf(row, sizeof row, "%d,%.17g,%.17g,%.17g,%.17g,%s,%d,%d,%d,%.17g,%.17g,%.17g,%.17g",
-                     gen, R.fitness[best], mean, worst, cfg->fitness_bonus * be->successes,
-                     st_stage_name(stage), R.stage_gen, all, be->successes, be->fp[0], be->fp[1],
-                     be->fp[2], be->fp[3]);
-    for (int t = 0; t < ST_PRIM_TRIALS; t++) k += snprintf(row + k, sizeof row - (size_t)k, ",%d", be->success[t]);
-    snprintf(row + k, sizeof row - (size_t)k, "\n");
-    if ((st = append(R.path[P_CSV], row, err, errsz))) break;
-    char bg[4 * ST_GENOME_MAX_GENES + 256];
-    int b = snprintf(bg, sizeof bg, "# generation %d\n# stage %s\n# fitness %.17g\n", gen, st_stage_name(stage),
-                     R.fitness[best]);
-    const stGenome *g = st_ga_genome(R.ga, best);
-    for (int i = 0; i < g->ngenes; i++) b += snprintf(bg + b, sizeof bg - (size_t)b, "%04x", g->gene[i]);
-    snprintf(bg + b, sizeof bg - (size_t)b, "\n");
-    if ((st = append(R.path[P_BEST], bg, err, errsz))) break;
-
-    done_here++;
-    R.stage_gen++;
-    int stop = 0;
-    const int stage_complete = all >= cfg->ga_success_genotypes;
-    if (def->progress) {
-      double el = now() - t_start, rate = done_here / (el > 0 ? el : 1e-9);
-      char e1[32], e2[32];
-      hms(el, e1, sizeof e1);
-      hms((R.limit - gen - 1) / rate, e2, sizeof e2);
-      /* trials the simulation gave up on (scored as failures): rare, but a user must see them */
-      char unst[48] = "";
-      if (unstable) snprintf(unst, sizeof unst, " | %d unstable trials", unstable);
-      fprintf(def->progress,
-              "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/%d all-solved %3d | "
-              "%.2f gen/s elapsed %s left <= %s%s\n",
-              gen, st_stage_name(stage), R.fitness[best], mean, cfg->fitness_bonus * be->successes,
-              be->successes, be->ntrials, all, rate, e1, e2, unst);
-      fflush(def->progress);
-    }
-    if (stage_complete) {
-      if (def->progress)
-        fprintf(def->progress, "evolve: %s complete at generation %d (%d genotypes solve all 16 trials)\n",
-                st_stage_name(stage), gen, all);
-      if (R.stage_idx + 1 < R.nstages) {
-        /* the population moves on unchanged (thesis 2.4): evaluated again under the next stage */
-        R.stage_idx++;
-        R.stage_gen = 0;
-        stGenome *same = malloc(sizeof *same * (size_t)gd.population);
-        for (int i = 0; i < gd.population; i++) same[i] = *st_ga_genome(R.ga, i);
-        st = st_ga_restore(R.ga, gen + 1, same, gd.population, err, errsz);
-        free(same);
-      } else {
-        stop = 1;
-      }
-    }
-    if (gen + 1 >= R.limit) stop = 1;
-    if (stop) {
-      /* the final population, best first, with its fitness */
-      for (int r = 0; r < gd.population; r++) {
-        sorted[r] = *st_ga_genome(R.ga, st_ga_ranked(R.ga, r));
-        sorted_fit[r] = R.fitness[st_ga_ranked(R.ga, r)];
-      }
-      if (!st) st = st_genome_set_save(R.path[P_POP], sorted, gd.population, sorted_fit, NULL, err, errsz);
-      if (!st) st = write_checkpoint(&R, gen + 1, 1, sorted, gd.population, err, errsz);
-      if (def->progress && !st)
-        fprintf(def->progress, "evolve: stopped after generation %d (%s); files in %s\n", gen,
-                stage_complete ? "all stages complete" : "generation limit", def->out_dir);
-      break;
-    }
-    if (!stage_complete && !st) st = st_ga_next(R.ga);
-    if (!st) {
-      stGenome *pop = malloc(sizeof *pop * (size_t)gd.population);
-      for (int i = 0; i < gd.population; i++) pop[i] = *st_ga_genome(R.ga, i);
-      st = write_checkpoint(&R, st_ga_generation(R.ga), 0, pop, gd.population, err, errsz);
-      free(pop);
-    }
-  }
-
-  for (int t = 0; R.ws && t < R.threads; t++) st_workspace_free(&R.ws[t]);
-  free(R.ws);
-  free(R.eval);
-  free(R.fitness);
-  free(sorted);
-  free(sorted_fit);
-  st_ga_destroy(R.ga);
-  st_protocol_destroy(R.proto);
+  int have_ckpt = 0, done = 0;
+  st = start_population(&R, &have_ckpt, &done, err, errsz);
+  if (!st && !done) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
+  if (!st && !done && !have_ckpt) st = start_files(&R, err, errsz);
+  if (!st && !done) st = allocate(&R, err, errsz);
+  R.t_start = now();
+  for (int stop = done; !st && !stop;) st = generation(&R, &stop, err, errsz);
+  release(&R);
   return st;
 }

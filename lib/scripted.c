@@ -395,8 +395,8 @@ static void do_move(stScripted *s, const stWorld *w, double *y) {
 
 /* ---- the stController ------------------------------------------------------------------------ */
 
-static void scripted_reset(void *self, const stTrialSpec *t) {
-  (void)t;
+static void scripted_reset(void *self, const stEpisodeSpec *e) {
+  (void)e;
   stScripted *s = self;
   s->word = -1;
   s->word_steps = 0;
@@ -496,11 +496,11 @@ const char *st_scripted_phase(const stScripted *s) {
 }
 
 stController st_scripted_controller(stScripted *s) {
-  stController c = {scripted_reset, scripted_act, ST_NET_IN_LING + ST_NET_NLING, s};
+  stController c = {scripted_reset, scripted_act, ST_NET_IN_LING + ST_NET_NLING, s, ST_NET_NOUT, 0};
   return c;
 }
 
-/* ---- trials --------------------------------------------------------------------------------- */
+/* ---- trials: episodes of the library's loop ---------------------------------------------- */
 
 stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted *s, int index,
                                 stTrialResult *r, stTraceFn trace, void *ctx, char *err,
@@ -514,86 +514,29 @@ stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted
   st_trial_spec(p, ST_STAGE_MAIN, 0, index, &t);
   const uint64_t key =
       st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, 0, 0, (uint64_t)index).key;
-  stController c = st_scripted_controller(s);
-  return st_trial_run_controller(p, ws, &t, &c, key, r, trace, ctx, err, errsz);
-}
-
-stStatus st_scripted_sequence(const stProtocol *p, stWorkspace *ws, stScripted *s,
-                              const double qhat0[ST_NDOF], const double obj[3],
-                              const double target[3], uint64_t seed_key, int max_steps,
-                              stIntegratedResult *r, stTraceFn trace, void *ctx, char *err,
-                              size_t errsz) {
-  memset(r, 0, sizeof *r);
-  r->success_step = -1;
-  for (int m = 0; m < ST_NPRIM; m++) r->switch_step[m] = -1;
-  if (max_steps < 1) {
-    st__errf(err, errsz, "scripted: %d steps (expected >= 1)", max_steps);
-    return ST_ERR_ARG;
-  }
-  if (!ws->dyn) {
-    stDynDef dd;
-    st_dyn_def_from_config(&p->cfg, &dd);
-    stStatus st = st_world_create_dynamic(p->robot, &p->scene, &dd, &ws->dyn, err, errsz);
-    if (st) return st;
-  }
-  stWorld *w = ws->dyn;
-  st_world_set_seed(w, seed_key);
-  st_world_reset(w, qhat0, obj, target); /* the object-table collision is on */
-  stController c = st_scripted_controller(s);
-  c.reset(c.self, NULL);
-  stCaretaker ct;
-  st_caretaker_init(&ct, &p->cfg);
-  stQuantities q;
-  st_quantities(w, &p->sensor, &q);
-  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT];
-  int focus_target = 0, end_at = -1;
-  for (int step = 0; step < max_steps; step++) {
-    /* the caretaker senses the state before the action, like the network */
-    const int word = st_caretaker_word(&ct, &p->fitness, step, &q, &w->contacts);
-    double ling[ST_NET_NLING] = {0, 0, 0, 0};
-    if (word >= 0) st_net_label_input(word, p->cfg.network_linguistic_input, ling);
-    st_sensor_inputs(w, &p->sensor, &q, focus_target, step == 0, ling,
-                     p->cfg.network_secondary_input, in, ST_NET_MAX_IN);
-    c.act(c.self, w, &q, in, step, out);
-    focus_target = st_focus_is_target(&p->sensor, out[ST_NET_OUT_FOCUS]);
-    st_world_step(w, out);
-    st_quantities(w, &p->sensor, &q);
-    r->steps = step + 1;
-    const int at_target = q.lifted && norm3(w->obj, w->target) < p->scene.target_radius;
-    if (at_target && r->success_step < 0) {
-      r->success_step = step;
-      end_at = step + p->fitness.reach_hold_steps;
-    }
-    r->fell = st_world_object_fell(w);
-    r->unstable = st_world_unstable(w);
-    int event = -1;
-    if (r->fell || r->unstable) {
-      event = ST_END_FAILURE;
-    } else if (end_at >= 0 && (step >= end_at || step == max_steps - 1)) {
-      r->success = q.lifted;
-      event = r->success ? ST_END_SUCCESS : ST_END_FAILURE;
-    }
-    if (trace) {
-      stTraceStep ts = {step, w, &q, in, out, focus_target, 0.0, 0.0, at_target, event};
-      trace(ctx, &ts);
-    }
-    if (event >= 0) break;
-  }
-  for (int m = 0; m < ST_NPRIM; m++) r->switch_step[m] = ct.switch_step[m];
-  return ST_OK;
+  const stController c = st_scripted_controller(s);
+  return st_trial_run_with(p, ws, &t, &c, key, r, trace, ctx, err, errsz);
 }
 
 stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted *s, int k, int t,
-                                int max_steps, stIntegratedResult *r, stTraceFn trace, void *ctx,
-                                char *err, size_t errsz) {
+                                stIntTrialResult *r, stTraceFn trace, void *ctx, char *err,
+                                size_t errsz) {
   if (k < 0 || k >= ST_NPOSTURE || t < 0 || t > 1) {
     memset(r, 0, sizeof *r);
     st__errf(err, errsz, "scripted: integrated posture %d, target %d (expected 0..%d, 0..1)", k, t,
              ST_NPOSTURE - 1);
     return ST_ERR_ARG;
   }
-  const uint64_t key =
-      st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_USER, 0, (uint64_t)k, (uint64_t)t).key;
-  return st_scripted_sequence(p, ws, s, p->posture[ST_PRIM_REACH][k], p->scene.obj_pos[k],
-                              p->scene.target[t], key, max_steps, r, trace, ctx, err, errsz);
+  stIntegratedDef def;
+  st_integrated_def_from_config(&p->cfg, &def);
+  /* trial 2k + t of generation 0 keys the solver's generator, as an individual's trial would */
+  const uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_SOLVER, 0, 0,
+                                    (uint64_t)(2 * k + t)).key;
+  stEpisodeSpec e;
+  st_int_episode(p, &def, k, t, NULL, key, &e);
+  const stWords words = st_int_words(p, ST_WORDS_CARETAKER);
+  const stController c = st_scripted_controller(s);
+  stIntScorer is;
+  const stScorer sc = st_int_scorer(&is, p, &def, r, NULL);
+  return st_episode_run(p, ws, &e, &c, &words, &sc, trace, ctx, err, errsz);
 }

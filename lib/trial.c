@@ -7,38 +7,6 @@
 
 #include "internal.h"
 
-stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, size_t errsz) {
-  *out = NULL;
-  stStatus st = st_config_validate(cfg, err, errsz);
-  if (st) return st;
-  stProtocol *p = calloc(1, sizeof *p);
-  if (!p) return ST_ERR_NOMEM;
-  p->cfg = *cfg;
-  if ((st = st_robot_create(cfg, &p->robot, err, errsz))) {
-    free(p);
-    return st;
-  }
-  st_scene_from_config(cfg, &p->scene);
-  st_sensor_def_from_config(cfg, &p->sensor);
-  st_fitness_def_from_config(cfg, &p->fitness);
-  p->net.lambda = cfg->network_lambda;
-  p->net.gamma_a = cfg->network_gamma_a;
-  p->net.gamma_b = cfg->network_gamma_b;
-  p->primitives = st_config_primitive_mask(cfg);
-  if ((st = st_postures_all(p->robot, &p->scene, p->posture, err, errsz))) {
-    st_protocol_destroy(p);
-    return st;
-  }
-  *out = p;
-  return ST_OK;
-}
-
-void st_protocol_destroy(stProtocol *p) {
-  if (!p) return;
-  st_robot_destroy(p->robot);
-  free(p);
-}
-
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
   const stConfig *c = &p->cfg;
   memset(t, 0, sizeof *t);
@@ -63,42 +31,33 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
                         : t->primitive == ST_PRIM_MOVE ? c->stage_move_table_off_step
                                                        : -1;
   }
-  st_net_label_input(t->primitive, c->network_linguistic_input, t->ling);
 }
 
-void st_workspace_free(stWorkspace *ws) {
-  if (!ws) return;
-  st_world_destroy(ws->kin);
-  st_world_destroy(ws->dyn);
-  ws->kin = ws->dyn = NULL;
-}
-
-/* ---- the world of a stage: kinematic (simple-prim) or dynamic (main-prim) ---- */
-
-static stStatus stage_world(const stProtocol *p, stWorkspace *ws, stStage stage, stWorld **w,
-                            char *err, size_t errsz) {
-  stStatus st = ST_OK;
-  if (stage == ST_STAGE_SIMPLE) {
-    if (!ws->kin) st = st_world_create(p->robot, &p->scene, &ws->kin, err, errsz);
-    *w = ws->kin;
-  } else {
-    if (!ws->dyn) {
-      stDynDef dd;
-      st_dyn_def_from_config(&p->cfg, &dd);
-      st = st_world_create_dynamic(p->robot, &p->scene, &dd, &ws->dyn, err, errsz);
-    }
-    *w = ws->dyn;
-  }
-  return st;
+void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_key,
+                      stEpisodeSpec *e, stWords *words) {
+  memset(e, 0, sizeof *e);
+  e->dynamic = t->stage != ST_STAGE_SIMPLE;
+  memcpy(e->qhat0, t->qhat0, sizeof e->qhat0);
+  memcpy(e->obj, t->obj, sizeof e->obj);
+  memcpy(e->target, t->target, sizeof e->target);
+  e->steps = t->steps;
+  e->table_off_step = t->table_off_step;
+  e->seed_key = seed_key;
+  /* the primitive's word every step; primitive stages never give the secondary input */
+  words->source = ST_WORDS_FIXED;
+  words->word = t->primitive;
+  words->scale = p->cfg.network_linguistic_input;
+  words->secondary = 0.0;
 }
 
 /* ---- one trial ---- */
 
-static double penalties(const stProtocol *p, const stWorld *w, int mask) {
+/* the penalties that apply, summed in the order table, object, moving */
+static double masked_penalty(const stTraceStep *s, int mask) {
   double pen = 0.0;
-  if (mask & ST_PEN_TABLE) pen += st_penalty_table(w, &p->sensor);
-  if (mask & ST_PEN_OBJECT) pen += st_penalty_object(w, &p->sensor);
-  if (mask & ST_PEN_MOVING) pen += st_penalty_moving(w, &p->sensor);
+  if (mask & ST_PEN_TABLE) pen += s->pen_table;
+  if (mask & ST_PEN_OBJECT) pen += s->pen_object;
+  if (mask & ST_PEN_MOVING) pen += s->pen_moving;
   return pen;
 }
 
@@ -162,95 +121,59 @@ void st_score_end(stTrialScore *sc, const stFitnessDef *fd, double obj_z, double
   *out = *r;
 }
 
-stStatus st_trial_run_controller(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                                 const stController *ctl, uint64_t seed_key, stTrialResult *r,
-                                 stTraceFn trace, void *ctx, char *err, size_t errsz) {
-  stWorld *w = NULL;
-  stStatus st = stage_world(p, ws, t->stage, &w, err, errsz);
-  if (st) return st;
-  st_world_set_seed(w, seed_key); /* quickstep's shuffling: keyed by the trial, not the thread */
-  st_world_reset(w, t->qhat0, t->obj, t->target);
-  if (ctl->reset) ctl->reset(ctl->self, t);
-  const int nin = ctl->ninputs;
-  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT];
-  stQuantities q;
-  st_quantities(w, &p->sensor, &q);
-  stTrialScore sc;
-  st_score_begin(&sc, t);
-  int focus_target = 0;
-  for (int step = 0; step < t->steps; step++) {
-    if (t->table_off_step >= 0 && step == t->table_off_step) st_world_set_object_table_collision(w, 0);
-    /* sense, think, act; primitive stages never give the secondary input */
-    st_sensor_inputs(w, &p->sensor, &q, focus_target, step == 0, t->ling, 0.0, in, nin);
-    ctl->act(ctl->self, w, &q, in, step, out);
-    const double y_focus = out[ST_NET_OUT_FOCUS];
-    focus_target = st_focus_is_target(&p->sensor, y_focus);
-    st_world_step(w, out);
-    st_quantities(w, &p->sensor, &q);
-    /* score the state the step produced */
-    const int mask = st_penalty_mask(t->stage, t->primitive, step,
-                                     t->table_off_step >= 0 ? t->table_off_step : t->steps);
-    double S, P;
-    const int event = st_score_step(&sc, &p->fitness, step, &q, y_focus, p->sensor.focus_threshold,
-                                    penalties(p, w, mask), st_world_object_fell(w),
-                                    st_world_unstable(w), &S, &P);
-    if (trace) {
-      stTraceStep ts = {step, w, &q, in, out, focus_target,
-                        S, P, st_success_now(&p->fitness, t->stage, t->primitive, &q), event};
-      trace(ctx, &ts);
-    }
-    if (event >= 0) break;
-  }
-  st_score_end(&sc, &p->fitness, w->obj[2], p->scene.table_top_z, r);
-  return ST_OK;
+/* ---- the primitive scorer ---- */
+
+static void prim_begin(void *self) {
+  stPrimScorer *s = self;
+  st_score_begin(&s->sc, s->t);
 }
 
-/* the evolved network as a controller, some outputs optionally forced */
-typedef struct netCtl {
-  const stNetParams *net;
-  stNetState state;
-  const stForce *force;
-  int nforce;
-} netCtl;
-
-static void net_reset(void *self, const stTrialSpec *t) {
-  (void)t;
-  netCtl *c = self;
-  st_net_reset(c->net, &c->state);
+static int prim_step(void *self, stTraceStep *ts) {
+  stPrimScorer *s = self;
+  const stTrialSpec *t = s->t;
+  const int mask = st_penalty_mask(t->stage, t->primitive, ts->step,
+                                   t->table_off_step >= 0 ? t->table_off_step : t->steps);
+  const int event = st_score_step(&s->sc, &s->p->fitness, ts->step, ts->q, ts->out[ST_NET_OUT_FOCUS],
+                                  s->p->sensor.focus_threshold, masked_penalty(ts, mask), ts->fell,
+                                  ts->unstable, &ts->S, &ts->P);
+  ts->success_now = st_success_now(&s->p->fitness, t->stage, t->primitive, ts->q);
+  return event;
 }
 
-static void net_act(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
-                    double *out) {
-  (void)w;
-  (void)q;
-  netCtl *c = self;
-  st_net_step(c->net, &c->state, in, out);
-  for (int i = 0; i < c->nforce; i++)
-    if (step >= c->force[i].from_step) out[c->force[i].output] = c->force[i].value;
+static void prim_end(void *self, const stWorld *w) {
+  stPrimScorer *s = self;
+  st_score_end(&s->sc, &s->p->fitness, w->obj[2], s->p->scene.table_top_z, s->r);
+}
+
+stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
+                        stTrialResult *r) {
+  s->p = p;
+  s->t = t;
+  s->r = r;
+  stScorer sc = {prim_begin, prim_step, prim_end, s};
+  return sc;
+}
+
+stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                           const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                           stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  stEpisodeSpec e;
+  stWords words;
+  st_trial_episode(p, t, seed_key, &e, &words);
+  stPrimScorer ps;
+  const stScorer sc = st_prim_scorer(&ps, p, t, r);
+  return st_episode_run(p, ws, &e, ctl, &words, &sc, trace, ctx, err, errsz);
 }
 
 stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                              const stNetParams *net, const stForce *force, int nforce,
                              uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
                              char *err, size_t errsz) {
-  if (nforce < 0 || (nforce > 0 && !force))
-    return st__errf(err, errsz, "forced outputs: count %d (expected >= 0, and a list when > 0)",
-                    nforce), ST_ERR_ARG;
-  for (int i = 0; i < nforce; i++) {
-    const stForce *f = &force[i];
-    if (f->output < 0 || f->output > ST_NET_OUT_FOCUS)
-      return st__errf(err, errsz, "forced output %d (expected 0..%d: the 12 DOF, then focus)",
-                      f->output, ST_NET_OUT_FOCUS), ST_ERR_RANGE;
-    if (!(f->value >= 0.0 && f->value <= 1.0))
-      return st__errf(err, errsz, "forced output %d: value %g (expected 0..1)", f->output,
-                      f->value), ST_ERR_RANGE;
-    if (f->from_step < 0)
-      return st__errf(err, errsz, "forced output %d: from step %d (expected >= 0)", f->output,
-                      f->from_step), ST_ERR_RANGE;
-  }
-  netCtl c = {net, {{0}, {0}, {0}, {0}, 0}, force, nforce};
-  stController ctl = {net_reset, net_act, st_net_ninputs(net->arch), &c};
-  return st_trial_run_controller(p, ws, t, &ctl, seed_key, r, trace, ctx, err, errsz);
+  stStatus st = st_force_check(force, nforce, err, errsz);
+  if (st) return st;
+  stNetController c;
+  const stController ctl = st_net_controller(&c, net, force, nforce);
+  return st_trial_run_with(p, ws, t, &ctl, seed_key, r, trace, ctx, err, errsz);
 }
 
 stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,

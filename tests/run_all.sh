@@ -32,6 +32,7 @@ run_part "apps: argument and input errors" bash tests/check_apps.sh
 run_part "simprobe against iKin v1.0" bash tests/check_simprobe.sh
 run_part "evolve: threads, kill and resume, bad input" bash tests/check_evolve.sh
 run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
+run_part "integrated stage: score, conditions, resume, threads, replay" bash tests/check_integrated.sh
 run_part "tools: run summaries and fitness plots" bash tests/check_tools.sh
 if [ "$BUILD" = build ]; then
   run_part "install + pkg-config" bash tests/check_install.sh

@@ -95,7 +95,7 @@ extern "C" {
   REAL(fitness, move_touch, 0.1, 0.0, 1.0, "eq. 2.12: step fitness while touching the object") \
   REAL(fitness, move_lift, 0.1, 0.0, 1.0, "eq. 2.12: step fitness while the object is lifted") \
   REAL(fitness, move_lift_dist, 0.8, 0.0, 1.0, "eq. 2.12: weight of exp(-decay d_m) while lifted") \
-  ENUM(stage, stages, 0, "simple_prim|main_prim|prims", "what evolve runs: simple-prim, main-prim, or both in sequence (thesis 2.7-2.8)") \
+  ENUM(stage, stages, 0, "simple_prim|main_prim|prims|integrated", "what evolve runs: simple-prim, main-prim, both in sequence (thesis 2.7-2.8), or the integrated stage (2.9)") \
   STR(stage, init_population, "", "population file to start from (main_prim); empty: random genotypes") \
   STR(stage, primitives, "reach,open,grasp,move", "primitives whose 4 trials are evaluated, comma-separated; F is the harmonic mean over these (diagnostic: the thesis evaluates all four)") \
   INT(stage, simple_steps, 60, 1, 100000, "simple-prim trial length, control steps (3 s)") \
@@ -107,6 +107,20 @@ extern "C" {
   INT(stage, move_table_off_step, 10, 0, 100000, "main-prim move: object-table collision off after this many steps") \
   INT(caretaker, grasp_touches, 3, 1, 6, "the caretaker considers a grasp done when this many touch sensors touch the object (thesis 2.9.3)") \
   INT(caretaker, first_step, 1, 0, 100000, "first step at which the caretaker speaks (never at step 0, thesis 2.9.3)") \
+  STR(integrated, populations, "", "integrated stage: primitive-stage population files (612 genes, best first), comma-separated; each item may be a glob pattern (expanded in sorted order)") \
+  INT(integrated, top, 10, 1, 100000, "integrated stage: genotypes taken from the top of each population file (thesis 2.4: the top 10 of each of the 10 runs)") \
+  ENUM(integrated, words_even, 1, "none|caretaker|selftalk", "what even trials (0, 2, 4, 6) hear: no words, the caretaker, or self talk (Table 2.1)") \
+  ENUM(integrated, words_odd, 2, "none|caretaker|selftalk", "what odd trials hear (Table 2.1)") \
+  ENUM(integrated, fitness_even, 1, "integrated|prediction", "fitness of even trials: integrated behaviour (eq. 2.14) or prediction (eq. 2.15-2.24; caretaker trials of a type A network) (Table 2.1)") \
+  ENUM(integrated, fitness_odd, 0, "integrated|prediction", "fitness of odd trials (Table 2.1)") \
+  BOOL(integrated, first_generation, 1, "the first generation hears the caretaker in every trial, scored by the integrated fitness with bonuses x first_bonus_factor (thesis 2.9.4.1: all conditions but NI)") \
+  REAL(integrated, first_bonus_factor, 10.0, 0.0, 1000.0, "bonus multiplier of the first generation's integrated fitness (thesis 2.9.4.1)") \
+  INT(integrated, trials, 8, 1, 32, "trials per individual; trial i has type k = i mod 4: reach posture k, object position k, target k mod 2 (thesis 2.9, SPEC 10)") \
+  INT(integrated, steps, 240, 1, 100000, "integrated trial length, control steps (12 s)") \
+  INT(integrated, hold_steps, 20, 0, 100000, "a trial ends (S = 1 for the rest) when the object was within the target radius while lifted more than this many steps ago and is still lifted") \
+  INT(integrated, focus_bonus_steps, 3, 1, 100000, "bonus when the object is lifted with the focus on the target for this many consecutive steps (thesis 2.9.4.1)") \
+  INT(prediction, window, 20, 1, 100000, "steps looked back before a switch of the caretaker's word (eq. 2.18, 2.20)") \
+  INT(prediction, bonus_window, 5, 0, 100000, "a switch predicted fewer than this many steps early earns the bonus (eq. 2.23)") \
   REAL(postures, reach_clearance, 0.15, 0.0, 2.0, "reach start: palm centre at least this far from every object position, m (SPEC 8)") \
   INT(postures, reach_max_steps, 40, 1, 100000, "reach start: a bang-bang IK controller in kinematic mode reaches the reach point within this many steps (2 s of the 3 s trial: thesis 2.7, enough time from every start) ") \
   REAL(postures, open_near_ball_x, 0.02, -0.2, 0.2, "open k=0,1: ball centre ahead of the palm centre along the fingers, m") \
@@ -226,6 +240,11 @@ void st_config_help(FILE *f);
  * reach, open, grasp, move (ST_PRIM_* of fitness.h). 0 if the list is empty or names anything
  * else (st_config_load and st_config_validate reject such a config). */
 unsigned st_config_primitive_mask(const stConfig *cfg);
+
+/* Values of stage.stages and of integrated.words_* / fitness_* (the order of their choices). */
+enum { ST_STAGES_SIMPLE = 0, ST_STAGES_MAIN, ST_STAGES_PRIMS, ST_STAGES_INTEGRATED };
+enum { ST_CFG_WORDS_NONE = 0, ST_CFG_WORDS_CARETAKER, ST_CFG_WORDS_SELFTALK };
+enum { ST_CFG_FIT_INTEGRATED = 0, ST_CFG_FIT_PREDICTION };
 
 /* Choice name of an ENUM key's value, e.g. st_config_enum_name("network", "arch", 1) = "A". */
 const char *st_config_enum_name(const char *section, const char *name, int value);

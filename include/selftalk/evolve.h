@@ -1,10 +1,13 @@
 /* SPDX-License-Identifier: MIT
- * libselftalk: an evolution run of the primitive stages (thesis §2.4, §2.7-§2.8) - the GA,
- * parallel evaluation, termination, stage chaining, output files, checkpoint and resume.
+ * libselftalk: an evolution run of the primitive stages (thesis §2.4, §2.7-§2.8) or of the
+ * integrated stage (§2.9, selftalk/integrated.h) - the GA, parallel evaluation, termination,
+ * stage chaining, output files, checkpoint and resume.
  *
  * Files in the output directory:
  *   config.ini         the resolved configuration (written once)
  *   fitness.csv        one row per generation: generation,best,mean,worst,best_bonus,stage,...
+ *                      (integrated: generation,best,mean,worst,best_F_int,best_F_pred,
+ *                      best_bonus,best_bonus_auto,best_successes,best_t0,...)
  *   best.genome        the best genotype of every generation, appended (SPEC §4 format)
  *   population.genome  the final population, best first, with fitness (at the end)
  *   checkpoint         the state after the last finished generation, rewritten atomically
@@ -32,8 +35,8 @@ typedef struct stEvolveDef {
 } stEvolveDef;
 
 /* Runs (or resumes) the stages cfg->stage_stages names. Refuses an unwritable directory, a
- * resume with a different configuration, or an unreadable initial population before any
- * evaluation. */
+ * resume with a different configuration, or an unreadable initial population (integrated:
+ * population files that cannot be assembled) before any evaluation. */
 stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz);
 
 #ifdef __cplusplus

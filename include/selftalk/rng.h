@@ -21,6 +21,9 @@ typedef enum stRngStream {
   ST_RNG_MUTATE = 2, /* mutation of one child: (generation, child index) */
   ST_RNG_TRIAL = 3,  /* trial offsets: (generation, trial); common to all individuals */
   ST_RNG_GROW = 4,   /* new genes when a genotype grows: (run, individual) */
+  ST_RNG_INTEGRATED = 5, /* integrated-stage trial offsets: (generation, trial); common to all */
+  ST_RNG_SOLVER = 6, /* the dynamic solver's generator of an integrated or scripted episode:
+                        (generation, individual, trial) */
   ST_RNG_USER = 100  /* first value free for applications */
 } stRngStream;
 

@@ -34,6 +34,7 @@
 #define SELFTALK_SCRIPTED_H
 
 #include "selftalk/caretaker.h"
+#include "selftalk/integrated.h"
 #include "selftalk/trial.h"
 
 #ifdef __cplusplus
@@ -54,42 +55,24 @@ stController st_scripted_controller(stScripted *s);
 const char *st_scripted_phase(const stScripted *s);
 
 /* Main-prim trial `index` (0..15: primitive index / 4, posture index % 4) of generation 0,
- * scored by the library (st_trial_run_controller). Nullable: trace. */
+ * scored by the library (the primitive scorer of the episode loop). Nullable: trace. */
 stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted *s, int index,
                                 stTrialResult *r, stTraceFn trace, void *ctx, char *err,
                                 size_t errsz);
 
-/* How an integrated trial went. */
-typedef struct stIntegratedResult {
-  int success;        /* the object was at the target, lifted, and still lifted at the end */
-  int steps;          /* control steps run */
-  int success_step;   /* first step with the object within target_radius and lifted; -1 */
-  int fell;           /* the object fell off / under the table */
-  int unstable;       /* the simulation diverged */
-  int switch_step[ST_NPRIM]; /* step each caretaker word was first given, -1 (jumped) */
-} stIntegratedResult;
-
-/* The integrated sequence (thesis §2.9.3, §2.10.1): the robot starts in reach posture k, the
- * object at scene position k (no offset), target t (0 or 1, no offset); the caretaker names
- * the primitive each step (silent at step 0; the secondary input "move-object-to-target" is
- * given throughout) and the controller performs it. The object-table collision stays on.
- * Success: the object centre comes within scene.target_radius of the target while lifted
- * (touching the robot, not the table); the trial then runs fitness.reach_hold_steps more
- * steps and succeeds if the object is still lifted (thesis §2.9: "moved to the target more
- * than 20 steps ago and still held"). It ends as a failure when the object falls or the world
- * diverges, else after max_steps (12 s: 240 steps). Trace steps carry the network inputs the
- * controller saw (the caretaker's word in 21-24) and S = P = 0. Nullable: trace. */
+/* The integrated sequence (thesis §2.9.3, §2.10.1) as an integrated trial of the episode loop
+ * (selftalk/integrated.h): reach posture k, object at scene position k and target t (0 or 1),
+ * both without offsets; the caretaker names the primitive each step (silent at step 0; the
+ * secondary input "move-object-to-target" is given throughout) and the controller performs
+ * it; the object-table collision stays on; integrated.steps long (240: 12 s). Scored by the
+ * integrated scorer: the trial ends early once the object was within the fitness's target
+ * radius while lifted more than integrated.hold_steps (20) steps ago and is still lifted;
+ * success is main-prim move's condition (within the radius at some step, still lifted at the
+ * end). The solver's generator is keyed by (run seed, generation 0, individual 0, trial
+ * 2k + t). Nullable: trace. */
 stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted *s, int k,
-                                int t, int max_steps, stIntegratedResult *r, stTraceFn trace,
-                                void *ctx, char *err, size_t errsz);
-
-/* The same sequence from any start: posture qhat0, object centre obj, target; seed_key keys the
- * dynamic solver's generator (st_world_set_seed). For tests with offsets (thesis §2.10.1). */
-stStatus st_scripted_sequence(const stProtocol *p, stWorkspace *ws, stScripted *s,
-                             const double qhat0[ST_NDOF], const double obj[3],
-                             const double target[3], uint64_t seed_key, int max_steps,
-                             stIntegratedResult *r, stTraceFn trace, void *ctx, char *err,
-                             size_t errsz);
+                                int t, stIntTrialResult *r, stTraceFn trace, void *ctx,
+                                char *err, size_t errsz);
 
 #ifdef __cplusplus
 }

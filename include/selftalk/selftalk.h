@@ -4,18 +4,22 @@
 #ifndef SELFTALK_SELFTALK_H
 #define SELFTALK_SELFTALK_H
 
+#include "selftalk/assemble.h"
 #include "selftalk/base.h"
 #include "selftalk/config.h"
 #include "selftalk/ga.h"
 #include "selftalk/genome.h"
 #include "selftalk/io.h"
 #include "selftalk/net.h"
+#include "selftalk/prediction.h"
 #include "selftalk/rng.h"
 /* the simulator side (links ODE, urdfdom, assimp): robot, world, sensors, stages */
 #include "selftalk/caretaker.h"
+#include "selftalk/episode.h"
 #include "selftalk/evolve.h"
 #include "selftalk/fitness.h"
 #include "selftalk/ik.h"
+#include "selftalk/integrated.h"
 #include "selftalk/model.h"
 #include "selftalk/postures.h"
 #include "selftalk/robot.h"

@@ -1,43 +1,22 @@
 /* SPDX-License-Identifier: MIT
  * libselftalk: trials of the primitive stages (thesis §2.7-§2.8, SPEC §2, §8) - which trials a
- * stage has, how one runs (sense, think, act, score), and how an individual's trials combine
- * into its fitness.
+ * stage has, how one is scored (the primitive scorer of the episode loop, selftalk/episode.h),
+ * and how an individual's trials combine into its fitness.
  *
- * Owns: stProtocol, the immutable run-level data (config, robot, scene, the 16 postures) that
- * every thread reads; per-thread state lives in stWorkspace. A trial's random offsets are
- * keyed by (seed, generation, trial index): every individual of a generation sees the same
- * trials (common random numbers). */
+ * A trial's random offsets are keyed by (seed, generation, trial index): every individual of a
+ * generation sees the same trials (common random numbers). */
 #ifndef SELFTALK_TRIAL_H
 #define SELFTALK_TRIAL_H
 
 #include <stdint.h>
 
-#include "selftalk/fitness.h"
-#include "selftalk/net.h"
-#include "selftalk/postures.h"
-#include "selftalk/world.h"
+#include "selftalk/episode.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define ST_PRIM_TRIALS 16 /* trials of a primitive stage: 4 per primitive */
-
-/* Everything a run reads and never changes. */
-typedef struct stProtocol {
-  stConfig cfg;
-  stRobot *robot; /* owned */
-  stScene scene;
-  stSensorDef sensor;
-  stFitnessDef fitness;
-  stNetDef net;
-  double posture[ST_NPRIM][ST_NPOSTURE][ST_NDOF];
-  unsigned primitives; /* stage.primitives: bit p set = primitive p's trials are evaluated */
-} stProtocol;
-
-/* Loads the robot, computes the 16 postures. */
-stStatus st_protocol_create(const stConfig *cfg, stProtocol **protocol, char *err, size_t errsz);
-void st_protocol_destroy(stProtocol *protocol); /* nullable */
 
 /* One trial, fully specified. */
 typedef struct stTrialSpec {
@@ -51,19 +30,16 @@ typedef struct stTrialSpec {
   double target[3];
   int steps;
   int table_off_step; /* main-prim grasp / move: object-table collision off from this step; -1 */
-  double ling[ST_NET_NLING]; /* the caretaker's word, one-hot x linguistic_input */
 } stTrialSpec;
 
 /* Trial `index` of a stage in a generation (offsets from the counter-based generator). */
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t);
 
-/* How a trial ended. */
-typedef enum stTrialEnd {
-  ST_END_FULL = 0,  /* ran its full length */
-  ST_END_SUCCESS,   /* reach held for reach_hold_steps: S = 1 for the remaining steps */
-  ST_END_FAILURE,   /* object fell (or the simulation diverged): P = fail_penalty after */
-  ST_END_QUIET      /* grasp: object fell after the table was removed: nothing after */
-} stTrialEnd;
+/* The episode of a trial: its spec (kinematic in simple-prim, dynamic in main-prim; seed_key
+ * keys the dynamic solver's generator) and its words (the primitive's word every step, no
+ * secondary input). */
+void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_key,
+                      stEpisodeSpec *e, stWords *words);
 
 typedef struct stTrialResult {
   double sum_s, sum_p; /* over all `steps` steps, including the filled remainder */
@@ -104,59 +80,29 @@ int st_score_step(stTrialScore *sc, const stFitnessDef *def, int step, const stQ
 void st_score_end(stTrialScore *sc, const stFitnessDef *def, double obj_z, double table_top_z,
                   stTrialResult *r);
 
-/* One step as seen by a trace (apps/replay). */
-typedef struct stTraceStep {
-  int step;
-  const stWorld *world;
-  const stQuantities *q;
-  const double *in;  /* network inputs of this step */
-  const double *out; /* network outputs of this step */
-  int focus_target;  /* focus chosen by this step's output */
-  double S, P;
-  int success_now;
-  int event;         /* stTrialEnd when the trial ends at this step, else -1 */
-} stTraceStep;
+/* The primitive scorer of the episode loop: st_score_* on the episode's steps, with the
+ * penalties st_penalty_mask names; the result goes to *r at the end. */
+typedef struct stPrimScorer {
+  const stProtocol *p;
+  const stTrialSpec *t;
+  stTrialScore sc;
+  stTrialResult *r;
+} stPrimScorer;
 
-typedef void (*stTraceFn)(void *ctx, const stTraceStep *step);
+stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
+                        stTrialResult *r);
 
-/* Per-thread scratch: the worlds of each mode, created on first use. */
-typedef struct stWorkspace {
-  stWorld *kin;
-  stWorld *dyn;
-} stWorkspace;
-
-void st_workspace_free(stWorkspace *ws);
-
-/* What drives the robot in a trial: the evolved network, or any other controller (e.g. the
- * scripted one of apps/scripted). act() gets the state and the network inputs of this step and
- * writes at least 13 outputs: 12 desired normalised DOF positions, then the focus output. */
-typedef struct stController {
-  void (*reset)(void *self, const stTrialSpec *t); /* nullable */
-  void (*act)(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
-              double *out);
-  int ninputs; /* network inputs to prepare (25 or 26) */
-  void *self;
-} stController;
-
-/* Runs one trial with any controller; see st_trial_run. */
-stStatus st_trial_run_controller(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                                 const stController *ctl, uint64_t seed_key, stTrialResult *r,
-                                 stTraceFn trace, void *ctx, char *err, size_t errsz);
+/* A primitive trial driven by any controller (e.g. the scripted one): st_trial_episode, the
+ * primitive scorer, st_episode_run. Nullable: trace. */
+stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                           const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                           stTraceFn trace, void *ctx, char *err, size_t errsz);
 
 /* Runs one trial with a network. seed_key keys the dynamic solver's generator (unused in
  * kinematic mode). Nullable: trace. */
 stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                       const stNetParams *net, uint64_t seed_key, stTrialResult *r, stTraceFn trace,
                       void *ctx, char *err, size_t errsz);
-
-/* One network output forced to a value from a step on, whatever the network says: override
- * and lesion analyses of an evolved individual (apps/replay --force). The forced value is
- * what the robot and the scoring see, exactly as if the network had produced it. */
-typedef struct stForce {
-  int output;     /* 0..ST_NET_OUT_FOCUS: 12 desired normalised DOF positions, then focus */
-  double value;   /* 0..1 */
-  int from_step;  /* >= 0 */
-} stForce;
 
 /* st_trial_run with nforce outputs forced (nforce = 0: exactly st_trial_run). Forces are
  * applied in order, so a later one on the same output wins from its step on. ST_ERR_RANGE for
