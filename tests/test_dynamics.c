@@ -88,13 +88,15 @@ static void test_create_errors(void) {
   def.friction = NAN;
   CU_ASSERT_EQUAL(st_world_create_dynamic(r, &g_scene, &def, &w, err, sizeof err), ST_ERR_RANGE);
   ST_ASSERT_CONTAINS(err, "dynamics.friction");
-  /* the defaults build: 25 bodies (25 hinges; massless and fixed links folded), 5 sub-steps */
+  /* the defaults build one body per hinge (massless and fixed links folded): the 9 torso and
+   * arm DOF, thumb opposition + 3 thumb flexion hinges, 3 each for index, middle and ring (the
+   * little finger is rigid with the ring, iCub_SIM): 22; 5 sub-steps */
   st_dyn_def_from_config(&g_cfg, &def);
   CU_ASSERT_EQUAL_FATAL(st_world_create_dynamic(r, &g_scene, &def, &w, err, sizeof err), ST_OK);
   stDynInfo info;
   st_world_dynamic_info(w, &info);
-  CU_ASSERT_EQUAL(info.bodies, 25);
-  CU_ASSERT_EQUAL(info.hinges, 25);
+  CU_ASSERT_EQUAL(info.bodies, 22);
+  CU_ASSERT_EQUAL(info.hinges, 22);
   CU_ASSERT_EQUAL(info.substeps, 5);
   CU_ASSERT_EQUAL(info.rand_interposed, 1); /* Debian's libode calls dRandInt through its PLT */
   CU_ASSERT_EQUAL(w->dynamic, 1);
@@ -190,6 +192,60 @@ static void test_collision_switch(void) {
 /* joint velocity law in free space (SPEC §3): far from the command a joint runs at 40 deg/s;
  * close to it at alpha (y - qhat) deg/s, re-evaluated every sub-step (a geometric decay over
  * the sub-steps). Both with free motion and with the robot in ODE's step all along. */
+/* dynamics.kinematic_joints (default: torso pitch and yaw, the three shoulder joints): inside
+ * ODE's step (free motion off) those DOF follow the servo law of SPEC §3 exactly, computed
+ * here sub-step by sub-step from the law itself: qhat += clamp(alpha (y - qhat), +-40) h /
+ * range; the elbow, a bounded-torque motor, only approximately. A list that is not the
+ * chain's first joints, or names no hinge, is refused naming the key. */
+static void test_kinematic_joints(void) {
+  static const char *const in_ode[] = {"dynamics.free_motion=false", NULL};
+  static const char *const bad1[] = {"dynamics.kinematic_joints=l_elbow", NULL};
+  static const char *const bad2[] = {"dynamics.kinematic_joints=torso_pitch,no_such_joint", NULL};
+  const stRobot *r = robot();
+  double q[ST_NDOF], y[ST_NDOF];
+  CU_ASSERT_FATAL(posture(&g_scene, ST_PRIM_REACH, 0, q) == 0);
+  stWorld *w = make_world(NULL, in_ode);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(w);
+  memcpy(y, q, sizeof y);
+  const int kin[] = {ST_DOF_TORSO_YAW, ST_DOF_TORSO_PITCH, ST_DOF_SHOULDER_PITCH,
+                     ST_DOF_SHOULDER_ROLL, ST_DOF_SHOULDER_YAW};
+  y[ST_DOF_TORSO_YAW] = 0.9, y[ST_DOF_TORSO_PITCH] = q[ST_DOF_TORSO_PITCH] + 0.02;
+  y[ST_DOF_SHOULDER_PITCH] = 0.0, y[ST_DOF_SHOULDER_ROLL] = 1.0, y[ST_DOF_ELBOW] = 1.0;
+  st_world_reset(w, q, g_scene.obj_pos[0], g_scene.target[0]);
+  double law[ST_NDOF];
+  memcpy(law, q, sizeof law);
+  const double h = g_cfg.dynamics_substep;
+  const int nsub = (int)(g_cfg.robot_control_dt / h + 0.5);
+  for (int t = 0; t < 8; t++) {
+    st_world_step_dynamic(w, y);
+    for (size_t i = 0; i < sizeof kin / sizeof *kin; i++) {
+      const int d = kin[i];
+      const double range = (r->dof_hi[d] - r->dof_lo[d]) / DEG;
+      for (int s = 0; s < nsub; s++) {
+        double v = r->alpha_dynamic * (y[d] - law[d]);
+        v = v > 40.0 ? 40.0 : v < -40.0 ? -40.0 : v;
+        law[d] += v * h / range;
+      }
+      CU_ASSERT_DOUBLE_EQUAL(w->qhat[d], law[d], 1e-9);
+    }
+  }
+  CU_ASSERT(!st_world_unstable(w));
+  CU_ASSERT(w->qhat[ST_DOF_ELBOW] > q[ST_DOF_ELBOW] + 0.05); /* the motor moved it too */
+  st_world_destroy(w);
+  for (int i = 0; i < 2; i++) {
+    stConfig cfg;
+    st_config_default(&cfg);
+    char err[512] = "";
+    CU_ASSERT_EQUAL_FATAL(st_config_set(&cfg, (i ? bad2 : bad1)[0], err, sizeof err), ST_OK);
+    stDynDef def;
+    st_dyn_def_from_config(&cfg, &def);
+    stWorld *b = (stWorld *)1;
+    CU_ASSERT_EQUAL(st_world_create_dynamic(r, &g_scene, &def, &b, err, sizeof err), ST_ERR_RANGE);
+    CU_ASSERT_PTR_NULL(b);
+    ST_ASSERT_CONTAINS(err, "dynamics.kinematic_joints");
+  }
+}
+
 static void test_velocity_law(void) {
   static const char *const full[] = {"dynamics.free_motion=false", NULL};
   double q[ST_NDOF];
@@ -606,6 +662,7 @@ void st_suite_dynamics(void) {
   ST_ADD_TEST(test_free_fall);
   ST_ADD_TEST(test_collision_switch);
   ST_ADD_TEST(test_velocity_law);
+  ST_ADD_TEST(test_kinematic_joints);
   ST_ADD_TEST(test_touch_sensors);
   ST_ADD_TEST(test_move_posture_holds);
   ST_ADD_TEST(test_lift);
