@@ -178,6 +178,7 @@ void st_dyn_def_from_config(const stConfig *c, stDynDef *d) {
   d->iterations = c->dynamics_iterations;
   d->gravity = c->dynamics_gravity;
   d->friction = c->dynamics_friction;
+  d->table_friction = c->dynamics_table_friction;
   d->erp = c->dynamics_erp;
   d->cfm = c->dynamics_cfm;
   d->contact_erp = c->dynamics_contact_erp;
@@ -215,6 +216,8 @@ static int check_def(const stDynDef *d, double dt, int *nsub, char *err, size_t 
     BAD("dynamics.gravity: %g (expected >= 0)", d->gravity);
   if (!(d->friction >= 0.0 && d->friction < 1e6))
     BAD("dynamics.friction: %g (expected >= 0)", d->friction);
+  if (!(d->table_friction >= 0.0 && d->table_friction < 1e6))
+    BAD("dynamics.table_friction: %g (expected >= 0)", d->table_friction);
   if (!(d->erp >= 0.0 && d->erp <= 1.0)) BAD("dynamics.erp: %g (expected 0..1)", d->erp);
   if (!(d->cfm >= 0.0 && d->cfm <= 1.0)) BAD("dynamics.cfm: %g (expected 0..1)", d->cfm);
   if (!(d->contact_erp >= 0.0 && d->contact_erp <= 1.0))
@@ -646,7 +649,7 @@ void st__dyn_destroy(stWorld *w) {
  * ODE's colliders return at most the requested number of points, the first ones they find:
  * for the object's flat base on the table that is one side of the rim, and the object creeps.
  * So up to 16 are asked for and max_contacts of them kept, evenly spread over the list. */
-static int collide(dynInternal *d, dGeomID a, dGeomID b, int make) {
+static int collide(dynInternal *d, dGeomID a, dGeomID b, int make, double mu) {
   if (!a || !b) return 0;
   enum { ASK = 16 };
   const int n = dCollide(a, b, ASK, d->cg, sizeof d->cg[0]);
@@ -657,6 +660,7 @@ static int collide(dynInternal *d, dGeomID a, dGeomID b, int make) {
       dContact c;
       memset(&c, 0, sizeof c);
       c.surface = d->surface;
+      c.surface.mu = mu;
       c.geom = d->cg[i];
       dBodyID b1 = dGeomGetBody(d->cg[i].g1), b2 = dGeomGetBody(d->cg[i].g2);
       if ((!b1 || dBodyIsKinematic(b1)) && (!b2 || dBodyIsKinematic(b2))) continue; /* no effect */
@@ -685,13 +689,14 @@ static void collide_object(stWorld *w, int make, stContacts *c) {
   dReal oa[6];
   object_aabb(d, oa);
   if (d->obj_table && aabb_overlap(oa, d->table_aabb)) {
-    int hit = collide(d, d->ball_g, d->table, make);
-    hit |= collide(d, d->base_g, d->table, make);
+    const double mu = d->def.table_friction;
+    int hit = collide(d, d->ball_g, d->table, make, mu);
+    hit |= collide(d, d->base_g, d->table, make, mu);
     if (hit) c->object_table = 1;
   }
   if (oa[4] <= d->def.floor_z) {
-    collide(d, d->ball_g, d->floor, make);
-    collide(d, d->base_g, d->floor, make);
+    collide(d, d->ball_g, d->floor, make, d->def.table_friction);
+    collide(d, d->base_g, d->floor, make, d->def.table_friction);
   }
 }
 
@@ -706,13 +711,13 @@ static void collide_all(stWorld *w, int make, stContacts *c) {
     const dynGeom *g = &d->geom[i];
     dReal a[6];
     dGeomGetAABB(g->g, a);
-    if (g->dyn && aabb_overlap(a, d->table_aabb) && collide(d, g->g, d->table, make)) {
+    if (g->dyn && aabb_overlap(a, d->table_aabb) && collide(d, g->g, d->table, make, d->def.friction)) {
       if (g->is_arm) c->arm_table = 1;
       if (g->touch >= 0) c->touch[g->touch] = 1;
     }
     if (aabb_overlap(a, oa)) {
-      int hit = collide(d, g->g, d->ball_g, make);
-      hit |= collide(d, g->g, d->base_g, make);
+      int hit = collide(d, g->g, d->ball_g, make, d->def.friction);
+      hit |= collide(d, g->g, d->base_g, make, d->def.friction);
       if (hit) {
         c->robot_object = 1;
         if (g->touch >= 0) c->touch[g->touch] = c->touch_object[g->touch] = 1;
