@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Every committed primitive run (data/evolved/prims_s<N>/) holds what its fitness.csv says: the
+# best genotype of its final population, replayed from the simulation with the run's own
+# config.ini on all 16 main-prim trials (with the offsets of its last generation), solves all
+# 16 (issue 12, item 4). A run directory without its three files is an error.
+set -uo pipefail
+APPDIR=${APPDIR:-apps}
+pass=0 fail=0
+ok() { echo "ok   $1"; pass=$((pass + 1)); }
+bad() { echo "FAIL $1"; fail=$((fail + 1)); }
+
+runs=(data/evolved/prims_s*/)
+if [ ! -d "${runs[0]}" ]; then
+  bad "no committed primitive run in data/evolved/prims_s*/ (expected at least one)"
+fi
+for d in "${runs[@]}"; do
+  [ -d "$d" ] || continue
+  d=${d%/}
+  missing=""
+  for f in config.ini fitness.csv population.genome; do [ -f "$d/$f" ] || missing="$missing $f"; done
+  if [ -n "$missing" ]; then bad "$d: missing$missing"; continue; fi
+  last=$(tail -n 1 "$d/fitness.csv" | cut -d, -f1)
+  solved=0 lines=""
+  for k in $(seq 0 15); do
+    out=$("$APPDIR/replay" "$d/population.genome" "$d/config.ini" --stage main --trial "$k" \
+      --generation "$last" 2>&1 | grep '^trial ')
+    case "$out" in *" success=1 "*) solved=$((solved + 1)) ;; *) lines="$lines t$k" ;; esac
+  done
+  if [ "$solved" = 16 ]; then
+    ok "$d: the final best replays 16/16 main-prim trials (generation $last)"
+  else
+    bad "$d: the final best replays $solved/16 (failed:$lines)"
+  fi
+done
+echo "check_populations: $pass passed, $fail failed"
+[ "$fail" = 0 ]
