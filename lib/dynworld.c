@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT
- * Dynamic world (thesis §2.1, SPEC §3): the robot, the table and the object as an ODE world.
- * See selftalk/world.h for the contract and docs/PROTOCOL.md ("Dynamic mode") for the
- * physical parameters, their reasons and the measurements behind them.
+ * Dynamic world backend (thesis §2.1, SPEC §3; lib/world_backend.h): the robot, the table and
+ * the object as an ODE world. See selftalk/world.h for the contract and docs/PROTOCOL.md
+ * ("Dynamic mode") for the physical parameters, their reasons and the measurements behind
+ * them. The geometries come from lib/world_geom.c, shared with the kinematic world.
  *
  * Bodies: every link moved by a revolute joint starts an ODE body; links on fixed joints
  * (massless frames, the knuckles, torso_2, l_upper_arm) are folded into the body of their
@@ -31,19 +32,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dynworld.h"
 #include "internal.h"
 #include "ode_util.h"
 #include "selftalk/rng.h"
+#include "world_backend.h"
+#include "world_geom.h"
 
+/* what a robot geometry (geoms.g[i] for model geometry i) touches */
 typedef struct dynGeom {
-  dGeomID g;
   int link;      /* model body the geometry belongs to */
-  int model;     /* model geometry index */
   int dyn;       /* on an ODE body (0: part of the static root) */
   int is_arm;    /* counts for arm_table */
   int touch;     /* touch sensor, -1 for none */
-  double bound;  /* bounding-sphere radius about the geometry origin (meshes) */
 } dynGeom;
 
 typedef struct dynHinge {
@@ -56,6 +56,7 @@ typedef struct dynHinge {
 } dynHinge;
 
 typedef struct dynInternal {
+  stWorldHead head;
   stDynDef def;
   int solver;               /* in use (ST_DYN_*) */
   int nsub;                 /* sub-steps per control step */
@@ -75,11 +76,11 @@ typedef struct dynInternal {
   int nhinge;
   dynHinge *hinge;
   int nkin;                 /* the first nkin hinges are exact servos (dynamics.kinematic_joints) */
-  int ngeom;
-  dynGeom *geom;
-  dTriMeshDataID *meshes;
+  stRobotGeoms geoms;       /* the robot's geometries */
+  dynGeom *geom;            /* (geoms.n) what each of them touches */
   dBodyID ball;
-  dGeomID ball_g, base_g, table, floor;
+  stSceneGeoms scene;       /* the table, and the object's sphere and base on the ball body */
+  dGeomID floor;
   double table_aabb[6];
   int obj_table;            /* object-table collision on */
   int robot_dyn;            /* the robot's bodies take part in ODE's step (else: free motion) */
@@ -96,32 +97,9 @@ typedef struct dynInternal {
   char reason[192];
 } dynInternal;
 
-/* ---- small helpers --------------------------------------------------------------------- */
-
-static void mat_mul(const double *A, const double *B, double *C) { /* C = A B (3x3) */
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++)
-      C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
-}
-
-static void mat_vec(const double *A, const double *x, double *y) {
-  for (int i = 0; i < 3; i++) y[i] = A[3 * i] * x[0] + A[3 * i + 1] * x[1] + A[3 * i + 2] * x[2];
-}
-
-static void to_ode_rot(const double *R, dMatrix3 out) {
-  for (int i = 0; i < 3; i++) {
-    out[4 * i] = R[3 * i];
-    out[4 * i + 1] = R[3 * i + 1];
-    out[4 * i + 2] = R[3 * i + 2];
-    out[4 * i + 3] = 0;
-  }
-}
+static const stWorldBackend dyn_backend;
 
 static int finite3(const dReal *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
-
-static int aabb_overlap(const dReal *a, const dReal *b) {
-  return a[0] <= b[1] && b[0] <= a[1] && a[2] <= b[3] && b[2] <= a[3] && a[4] <= b[5] && b[4] <= a[5];
-}
 
 /* ---- the interposition check ----------------------------------------------------------- */
 
@@ -244,6 +222,8 @@ static int check_def(const stDynDef *d, double dt, int *nsub, char *err, size_t 
 #undef BAD
 }
 
+/* ---- creation ---------------------------------------------------------------------------- */
+
 /* inertia about the centre of mass must be symmetric positive definite */
 static int inertia_ok(const double *I) {
   for (int i = 0; i < 9; i++)
@@ -253,32 +233,6 @@ static int inertia_ok(const double *I) {
               I[2] * (I[3] * I[7] - I[4] * I[6]);
   return m1 > 0 && m2 > 0 && m3 > 0;
 }
-
-static dGeomID make_geom(const stModel *m, int i, dTriMeshDataID *mesh) {
-  const double *s = m->geom_size[i];
-  *mesh = NULL;
-  switch (m->geom_type[i]) {
-    case ST_GEOM_SPHERE:
-      return s[0] > 0 && isfinite(s[0]) ? dCreateSphere(0, s[0]) : NULL;
-    case ST_GEOM_BOX:
-      return s[0] > 0 && s[1] > 0 && s[2] > 0 && finite3(s) ? dCreateBox(0, s[0], s[1], s[2]) : NULL;
-    case ST_GEOM_CYLINDER:
-      return s[0] > 0 && s[1] > 0 && isfinite(s[0]) && isfinite(s[1]) ? dCreateCylinder(0, s[0], s[1])
-                                                                       : NULL;
-    case ST_GEOM_MESH: {
-      if (m->geom_nvert[i] < 3 || m->geom_ntri[i] < 1) return NULL;
-      dTriMeshDataID d = dGeomTriMeshDataCreate();
-      dGeomTriMeshDataBuildDouble(d, m->mesh_vert[m->geom_vert0[i]], sizeof(double[3]),
-                                  m->geom_nvert[i], m->mesh_tri[m->geom_tri0[i]],
-                                  3 * m->geom_ntri[i], sizeof(int[3]));
-      *mesh = d;
-      return dCreateTriMesh(0, d, NULL, NULL, NULL);
-    }
-    default: return NULL;
-  }
-}
-
-/* ---- creation ---------------------------------------------------------------------------- */
 
 static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   const stRobot *r = w->robot;
@@ -294,9 +248,9 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
     const int pb = m->body_parent[b];
     if (m->jnt_type[b] == ST_JOINT_FIXED) {
       d->link_group[b] = d->link_group[pb];
-      mat_mul(d->link_R[pb], m->jnt_rot[b], d->link_R[b]);
+      st__mat3_mul(d->link_R[pb], m->jnt_rot[b], d->link_R[b]);
       double o[3];
-      mat_vec(d->link_R[pb], m->jnt_pos[b], o);
+      st__mat3_vec(d->link_R[pb], m->jnt_pos[b], o);
       for (int i = 0; i < 3; i++) d->link_p[b][i] = d->link_p[pb][i] + o[i];
     } else {
       d->glink[d->ngroup] = b;
@@ -317,7 +271,7 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
     for (int b = 0; b < nb; b++) {
       if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
       double c[3];
-      mat_vec(d->link_R[b], m->body_com[b], c);
+      st__mat3_vec(d->link_R[b], m->body_com[b], c);
       for (int i = 0; i < 3; i++) C[i] += m->body_mass[b] * (c[i] + d->link_p[b][i]);
       M += m->body_mass[b];
     }
@@ -333,12 +287,12 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
       if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
       const double mb = m->body_mass[b];
       double c[3], T[9], RI[9], Rt[9];
-      mat_vec(d->link_R[b], m->body_com[b], c);
+      st__mat3_vec(d->link_R[b], m->body_com[b], c);
       for (int i = 0; i < 3; i++) c[i] += d->link_p[b][i] - C[i];
       for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) Rt[3 * i + j] = d->link_R[b][3 * j + i];
-      mat_mul(d->link_R[b], m->body_inertia[b], RI);
-      mat_mul(RI, Rt, T); /* R I R^T */
+      st__mat3_mul(d->link_R[b], m->body_inertia[b], RI);
+      st__mat3_mul(RI, Rt, T); /* R I R^T */
       const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
       for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
@@ -357,10 +311,10 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
     dMassSetParameters(&ms, M, 0, 0, 0, I[0], I[4], I[8], I[1], I[2], I[5]);
     dBodySetMass(bd, &ms);
     double c[3];
-    mat_vec(R[gl], C, c);
+    st__mat3_vec(R[gl], C, c);
     dBodySetPosition(bd, p[gl][0] + c[0], p[gl][1] + c[1], p[gl][2] + c[2]);
     dMatrix3 Ro;
-    to_ode_rot(R[gl], Ro);
+    st__mat3_to_ode(R[gl], Ro);
     dBodySetRotation(bd, Ro);
   }
 
@@ -383,7 +337,7 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
     dJointAttach(j, d->gbody[d->link_group[b]], pg >= 0 ? d->gbody[pg] : 0);
     dJointSetHingeAnchor(j, p[b][0], p[b][1], p[b][2]);
     double ax[3];
-    mat_vec(R[b], a, ax);
+    st__mat3_vec(R[b], a, ax);
     dJointSetHingeAxis(j, ax[0], ax[1], ax[2]);
     dJointSetHingeParam(j, dParamLoStop, lo - d->def.stop_margin);
     dJointSetHingeParam(j, dParamHiStop, hi + d->def.stop_margin);
@@ -403,21 +357,19 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
     hg->hi_set = hi + d->def.stop_margin;
   }
 
-  /* geometries, attached to their body with the offset of their link and of the COM */
-  for (int i = 0; i < m->ngeom; i++) {
+  /* geometries (lib/world_geom.c), attached to their body with the offset of their link and
+   * of the COM */
+  stStatus st = st__robot_geoms_create(m, 1, &d->geoms, err, errsz);
+  if (st) return st;
+  for (int i = 0; i < d->geoms.n; i++) {
     const int l = m->geom_body[i], g = d->link_group[l];
-    dGeomID geom = make_geom(m, i, &d->meshes[i]);
-    if (!geom) {
-      st__errf(err, errsz, "geometry %d of link '%s': unsupported type or bad size", i,
-               m->body_name[l]);
-      return ST_ERR_MODEL;
-    }
+    dGeomID geom = d->geoms.g[i];
     double gp[3], gR[9];
-    mat_vec(d->link_R[l], m->geom_pos[i], gp);
+    st__mat3_vec(d->link_R[l], m->geom_pos[i], gp);
     for (int k = 0; k < 3; k++) gp[k] += d->link_p[l][k];
-    mat_mul(d->link_R[l], m->geom_rot[i], gR);
+    st__mat3_mul(d->link_R[l], m->geom_rot[i], gR);
     dMatrix3 Ro;
-    to_ode_rot(gR, Ro);
+    st__mat3_to_ode(gR, Ro);
     if (g >= 0) {
       dGeomSetBody(geom, d->gbody[g]);
       dGeomSetOffsetRotation(geom, Ro);
@@ -427,17 +379,8 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
       dGeomSetRotation(geom, Ro); /* the root link is the world frame */
       dGeomSetPosition(geom, gp[0], gp[1], gp[2]);
     }
-    dynGeom *dg = &d->geom[d->ngeom++];
-    dg->g = geom;
+    dynGeom *dg = &d->geom[i];
     dg->link = l;
-    dg->model = i;
-    dg->bound = 0;
-    if (m->geom_type[i] == ST_GEOM_MESH)
-      for (int v = 0; v < m->geom_nvert[i]; v++) {
-        const double *x = m->mesh_vert[m->geom_vert0[i] + v];
-        const double r = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-        if (r > dg->bound) dg->bound = r;
-      }
     dg->dyn = g >= 0;
     dg->is_arm = r->body_is_arm[l];
     dg->touch = r->body_touch[l];
@@ -456,20 +399,17 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
     st__errf(err, errsz, "scene: empty table box (expected min < max on every axis)");
     return ST_ERR_RANGE;
   }
-  d->table = dCreateBox(0, hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
-  dGeomSetPosition(d->table, 0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
-  dGeomGetAABB(d->table, d->table_aabb);
+  st__scene_geoms_create(sc, &d->scene);
+  dGeomGetAABB(d->scene.table, d->table_aabb);
   d->floor = dCreatePlane(0, 0, 0, 1, d->def.floor_z);
   d->ball = dBodyCreate(wd);
   dMass ms;
   dMassSetSphereTotal(&ms, sc->obj_mass, sc->obj_radius);
   dBodySetMass(d->ball, &ms);
-  d->ball_g = dCreateSphere(0, sc->obj_radius);
-  dGeomSetBody(d->ball_g, d->ball);
-  if (sc->base_radius > 0 && sc->base_height > 0) {
-    d->base_g = dCreateCylinder(0, sc->base_radius, sc->base_height);
-    dGeomSetBody(d->base_g, d->ball);
-    dGeomSetOffsetPosition(d->base_g, 0, 0, -sc->obj_radius + 0.5 * sc->base_height);
+  dGeomSetBody(d->scene.ball, d->ball);
+  if (d->scene.base) {
+    dGeomSetBody(d->scene.base, d->ball);
+    dGeomSetOffsetPosition(d->scene.base, 0, 0, -sc->obj_radius + 0.5 * sc->base_height);
   }
   return ST_OK;
 }
@@ -529,37 +469,9 @@ static stStatus mark_kinematic(dynInternal *d, const stModel *m, char *err, size
   return ST_OK;
 }
 
-stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, const stDynDef *def,
-                                 stWorld **out, char *err, size_t errsz) {
-  *out = NULL;
-  int nsub = 0;
-  if (check_def(def, robot->dt, &nsub, err, errsz)) return ST_ERR_RANGE;
-  st__ode_init();
-  pthread_once(&g_rand_once, rand_check);
-  const stModel *m = robot->model;
+/* the per-body and per-geometry arrays; 0 when out of memory */
+static int alloc_arrays(dynInternal *d, const stModel *m) {
   const size_t nb = (size_t)m->nbody;
-  stWorld *w = calloc(1, sizeof *w);
-  dynInternal *d = calloc(1, sizeof *d);
-  if (!w || !d) {
-    free(w);
-    free(d);
-    st__errf(err, errsz, "dynamic world: out of memory");
-    return ST_ERR_NOMEM;
-  }
-  w->robot = robot;
-  w->scene = scene;
-  w->dynamic = 1;
-  w->internal_ = d;
-  d->def = *def;
-  d->nsub = nsub;
-  d->h = robot->dt / nsub;
-  d->solver = def->solver;
-  if (def->solver == ST_DYN_QUICKSTEP && !g_rand_interposed) {
-    d->solver = ST_DYN_STEP; /* quickstep would share ODE's process-wide generator */
-    pthread_once(&g_warn_once, rand_warn);
-  }
-  w->R = calloc(nb, sizeof *w->R);
-  w->p = calloc(nb, sizeof *w->p);
   d->gbody = calloc(nb, sizeof *d->gbody);
   d->glink = calloc(nb, sizeof *d->glink);
   d->gcom = calloc(nb, sizeof *d->gcom);
@@ -571,20 +483,17 @@ stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, con
   d->vel = calloc(nb, sizeof *d->vel);
   d->saved = calloc(nb + 1, sizeof *d->saved);
   d->geom = calloc((size_t)m->ngeom + 1, sizeof *d->geom);
-  d->meshes = calloc((size_t)m->ngeom + 1, sizeof *d->meshes);
-  if (!w->R || !w->p || !d->gbody || !d->glink || !d->gcom || !d->link_group || !d->link_R ||
-      !d->link_p || !d->hinge || !d->angle || !d->vel || !d->saved || !d->geom || !d->meshes) {
-    st_world_destroy(w);
-    st__errf(err, errsz, "dynamic world: out of memory");
-    return ST_ERR_NOMEM;
-  }
+  return d->gbody && d->glink && d->gcom && d->link_group && d->link_R && d->link_p && d->hinge &&
+         d->angle && d->vel && d->saved && d->geom;
+}
+
+/* the ODE world with its own threading implementation, its contact group and the parameters of
+ * the [dynamics] keys; 0 when out of memory */
+static int create_ode_world(dynInternal *d) {
+  const stDynDef *def = &d->def;
   d->world = dWorldCreate();
   d->threading = dThreadingAllocateSelfThreadedImplementation();
-  if (!d->threading) {
-    st_world_destroy(w);
-    st__errf(err, errsz, "dynamic world: out of memory");
-    return ST_ERR_NOMEM;
-  }
+  if (!d->threading) return 0;
   dWorldSetStepThreadingImplementation(d->world, dThreadingImplementationGetFunctions(d->threading),
                                        d->threading);
   d->cgroup = dJointGroupCreate(0);
@@ -598,46 +507,56 @@ stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, con
   d->surface.mu = def->friction;
   d->surface.soft_erp = def->contact_erp;
   d->surface.soft_cfm = def->contact_cfm;
-  stStatus st = build(w, d, err, errsz);
-  if (!st) st = mark_kinematic(d, m, err, errsz);
-  if (st) {
-    st_world_destroy(w);
-    return st;
+  return 1;
+}
+
+stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz) {
+  int nsub = 0;
+  if (check_def(def, w->robot->dt, &nsub, err, errsz)) return ST_ERR_RANGE;
+  st__ode_init();
+  pthread_once(&g_rand_once, rand_check);
+  dynInternal *d = calloc(1, sizeof *d);
+  if (!d) return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
+  d->head.backend = &dyn_backend;
+  w->internal_ = d;
+  d->def = *def;
+  d->nsub = nsub;
+  d->h = w->robot->dt / nsub;
+  d->solver = def->solver;
+  if (def->solver == ST_DYN_QUICKSTEP && !g_rand_interposed) {
+    d->solver = ST_DYN_STEP; /* quickstep would share ODE's process-wide generator */
+    pthread_once(&g_warn_once, rand_warn);
   }
+  if (!alloc_arrays(d, w->robot->model) || !create_ode_world(d))
+    return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
+  stStatus st = build(w, d, err, errsz);
+  if (!st) st = mark_kinematic(d, w->robot->model, err, errsz);
+  if (st) return st;
   d->obj_table = 1;
-  *out = w;
   return ST_OK;
 }
 
-void st__dyn_destroy(stWorld *w) {
+static void dyn_destroy(stWorld *w) {
   dynInternal *d = w->internal_;
-  if (d) {
-    if (d->geom)
-      for (int i = 0; i < d->ngeom; i++) dGeomDestroy(d->geom[i].g);
-    if (d->meshes)
-      for (int i = 0; i < w->robot->model->ngeom; i++)
-        if (d->meshes[i]) dGeomTriMeshDataDestroy(d->meshes[i]);
-    if (d->ball_g) dGeomDestroy(d->ball_g);
-    if (d->base_g) dGeomDestroy(d->base_g);
-    if (d->table) dGeomDestroy(d->table);
-    if (d->floor) dGeomDestroy(d->floor);
-    if (d->cgroup) dJointGroupDestroy(d->cgroup);
-    if (d->world) dWorldDestroy(d->world); /* its bodies and hinges too */
-    if (d->threading) dThreadingFreeImplementation(d->threading);
-    free(d->gbody);
-    free(d->glink);
-    free(d->gcom);
-    free(d->link_group);
-    free(d->link_R);
-    free(d->link_p);
-    free(d->hinge);
-    free(d->angle);
-    free(d->vel);
-    free(d->saved);
-    free(d->geom);
-    free(d->meshes);
-    free(d);
-  }
+  st__robot_geoms_destroy(w->robot->model, &d->geoms);
+  st__scene_geoms_destroy(&d->scene);
+  if (d->floor) dGeomDestroy(d->floor);
+  if (d->cgroup) dJointGroupDestroy(d->cgroup);
+  if (d->world) dWorldDestroy(d->world); /* its bodies and hinges too */
+  if (d->threading) dThreadingFreeImplementation(d->threading);
+  free(d->gbody);
+  free(d->glink);
+  free(d->gcom);
+  free(d->link_group);
+  free(d->link_R);
+  free(d->link_p);
+  free(d->hinge);
+  free(d->angle);
+  free(d->vel);
+  free(d->saved);
+  free(d->geom);
+  free(d);
+  w->internal_ = NULL;
 }
 
 /* ---- contacts ---------------------------------------------------------------------------- */
@@ -669,9 +588,9 @@ static int collide(dynInternal *d, dGeomID a, dGeomID b, int make) {
 /* world AABB of the object (sphere and base) */
 static void object_aabb(const dynInternal *d, dReal oa[6]) {
   dReal t[6];
-  dGeomGetAABB(d->ball_g, oa);
-  if (d->base_g) {
-    dGeomGetAABB(d->base_g, t);
+  dGeomGetAABB(d->scene.ball, oa);
+  if (d->scene.base) {
+    dGeomGetAABB(d->scene.base, t);
     for (int i = 0; i < 3; i++) {
       if (t[2 * i] < oa[2 * i]) oa[2 * i] = t[2 * i];
       if (t[2 * i + 1] > oa[2 * i + 1]) oa[2 * i + 1] = t[2 * i + 1];
@@ -684,14 +603,14 @@ static void collide_object(stWorld *w, int make, stContacts *c) {
   dynInternal *d = w->internal_;
   dReal oa[6];
   object_aabb(d, oa);
-  if (d->obj_table && aabb_overlap(oa, d->table_aabb)) {
-    int hit = collide(d, d->ball_g, d->table, make);
-    hit |= collide(d, d->base_g, d->table, make);
+  if (d->obj_table && st__aabb_overlap(oa, d->table_aabb)) {
+    int hit = collide(d, d->scene.ball, d->scene.table, make);
+    hit |= collide(d, d->scene.base, d->scene.table, make);
     if (hit) c->object_table = 1;
   }
   if (oa[4] <= d->def.floor_z) {
-    collide(d, d->ball_g, d->floor, make);
-    collide(d, d->base_g, d->floor, make);
+    collide(d, d->scene.ball, d->floor, make);
+    collide(d, d->scene.base, d->floor, make);
   }
 }
 
@@ -702,17 +621,18 @@ static void collide_all(stWorld *w, int make, stContacts *c) {
   dynInternal *d = w->internal_;
   dReal oa[6];
   object_aabb(d, oa);
-  for (int i = 0; i < d->ngeom; i++) {
+  for (int i = 0; i < d->geoms.n; i++) {
     const dynGeom *g = &d->geom[i];
+    dGeomID gi = d->geoms.g[i];
     dReal a[6];
-    dGeomGetAABB(g->g, a);
-    if (g->dyn && aabb_overlap(a, d->table_aabb) && collide(d, g->g, d->table, make)) {
+    dGeomGetAABB(gi, a);
+    if (g->dyn && st__aabb_overlap(a, d->table_aabb) && collide(d, gi, d->scene.table, make)) {
       if (g->is_arm) c->arm_table = 1;
       if (g->touch >= 0) c->touch[g->touch] = 1;
     }
-    if (aabb_overlap(a, oa)) {
-      int hit = collide(d, g->g, d->ball_g, make);
-      hit |= collide(d, g->g, d->base_g, make);
+    if (st__aabb_overlap(a, oa)) {
+      int hit = collide(d, gi, d->scene.ball, make);
+      hit |= collide(d, gi, d->scene.base, make);
       if (hit) {
         c->robot_object = 1;
         if (g->touch >= 0) c->touch[g->touch] = c->touch_object[g->touch] = 1;
@@ -746,36 +666,22 @@ static int robot_near(const stWorld *w, double margin) {
     oa[2 * k] -= grow;
     oa[2 * k + 1] += grow;
   }
-  for (int i = 0; i < d->ngeom; i++) {
+  for (int i = 0; i < d->geoms.n; i++) {
     const dynGeom *g = &d->geom[i];
     if (!g->dyn) continue; /* the static root does not move */
-    const int gi = g->model, l = g->link;
-    const double *s = m->geom_size[gi], *Rl = w->R[l];
+    const int l = g->link;
+    const double *Rl = w->R[l];
     double Rg[9], c[3], half[3];
-    mat_mul(Rl, m->geom_rot[gi], Rg);
-    mat_vec(Rl, m->geom_pos[gi], c);
+    st__mat3_mul(Rl, m->geom_rot[i], Rg);
+    st__mat3_vec(Rl, m->geom_pos[i], c);
     for (int k = 0; k < 3; k++) c[k] += w->p[l][k];
-    switch (m->geom_type[gi]) {
-      case ST_GEOM_SPHERE: half[0] = half[1] = half[2] = s[0]; break;
-      case ST_GEOM_BOX:
-        for (int k = 0; k < 3; k++)
-          half[k] = 0.5 * (fabs(Rg[3 * k]) * s[0] + fabs(Rg[3 * k + 1]) * s[1] +
-                           fabs(Rg[3 * k + 2]) * s[2]);
-        break;
-      case ST_GEOM_CYLINDER:
-        for (int k = 0; k < 3; k++) {
-          const double u = Rg[3 * k + 2], r2 = 1.0 - u * u;
-          half[k] = 0.5 * s[1] * fabs(u) + s[0] * sqrt(r2 > 0 ? r2 : 0);
-        }
-        break;
-      default: half[0] = half[1] = half[2] = g->bound; break;
-    }
+    if (!st__geom_half_aabb(m, i, Rg, half)) half[0] = half[1] = half[2] = d->geoms.bound[i];
     dReal a[6];
     for (int k = 0; k < 3; k++) {
       a[2 * k] = c[k] - half[k] - margin;
       a[2 * k + 1] = c[k] + half[k] + margin;
     }
-    if (aabb_overlap(a, d->table_aabb) || aabb_overlap(a, oa)) return 1;
+    if (st__aabb_overlap(a, d->table_aabb) || st__aabb_overlap(a, oa)) return 1;
   }
   return 0;
 }
@@ -836,11 +742,11 @@ static void place_bodies(stWorld *w) {
   for (int g = 0; g < d->ngroup; g++) {
     const int gl = d->glink[g];
     double c[3];
-    mat_vec(w->R[gl], d->gcom[g], c);
+    st__mat3_vec(w->R[gl], d->gcom[g], c);
     dBodyID b = d->gbody[g];
     dBodySetPosition(b, w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
     dMatrix3 Ro;
-    to_ode_rot(w->R[gl], Ro);
+    st__mat3_to_ode(w->R[gl], Ro);
     dBodySetRotation(b, Ro);
   }
 }
@@ -890,10 +796,10 @@ static void place_kinematic(stWorld *w) {
   for (int g = 0; g < d->ngroup && d->hinge[g].kin; g++) {
     const int gl = d->glink[g];
     double c[3];
-    mat_vec(w->R[gl], d->gcom[g], c);
+    st__mat3_vec(w->R[gl], d->gcom[g], c);
     dBodySetPosition(d->gbody[g], w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
     dMatrix3 Ro;
-    to_ode_rot(w->R[gl], Ro);
+    st__mat3_to_ode(w->R[gl], Ro);
     dBodySetRotation(d->gbody[g], Ro);
   }
   prescribe_velocities(w, 1);
@@ -937,11 +843,11 @@ static void read_state(stWorld *w) {
   for (int i = 0; i < 3; i++) w->obj[i] = o[i];
 }
 
-void st_world_set_seed(stWorld *w, uint64_t key) {
-  if (w->dynamic) ((dynInternal *)w->internal_)->seed = key;
-}
+/* ---- reset ------------------------------------------------------------------------------- */
 
-void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]) {
+static void dyn_set_seed(stWorld *w, uint64_t key) { ((dynInternal *)w->internal_)->seed = key; }
+
+static void dyn_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]) {
   dynInternal *d = w->internal_;
   st__ode_init();
   double q[ST_NDOF];
@@ -995,9 +901,11 @@ void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const do
   if (!ok) set_unstable(w, "object position is not finite");
 }
 
-void st__dyn_update(stWorld *w) {
+static void dyn_update(stWorld *w) {
   if (!((dynInternal *)w->internal_)->unstable) read_state(w);
 }
+
+/* ---- stepping ---------------------------------------------------------------------------- */
 
 /* the servo law of SPEC §3 for every joint, from its current angle: d->vel (rad/s) */
 static void servo(stWorld *w, const double *y) {
@@ -1105,11 +1013,7 @@ static int ode_substep(stWorld *w, stContacts *c) {
   }
 }
 
-void st_world_step_dynamic(stWorld *w, const double *y) {
-  if (!w->dynamic) {
-    st_world_step_kinematic(w, y);
-    return;
-  }
+static void dyn_step(stWorld *w, const double *y) {
   dynInternal *d = w->internal_;
   if (d->unstable) return;
   for (int k = 0; k < ST_NDOF; k++)
@@ -1174,17 +1078,13 @@ void st_world_step_dynamic(stWorld *w, const double *y) {
     robot_to_free(w, 1);
 }
 
-void st_world_step(stWorld *w, const double *y) {
-  if (w->dynamic) st_world_step_dynamic(w, y);
-  else st_world_step_kinematic(w, y);
+/* ---- queries ------------------------------------------------------------------------------- */
+
+static void dyn_set_object_table_collision(stWorld *w, int on) {
+  ((dynInternal *)w->internal_)->obj_table = !!on;
 }
 
-void st_world_set_object_table_collision(stWorld *w, int on) {
-  if (w->dynamic) ((dynInternal *)w->internal_)->obj_table = !!on;
-}
-
-int st_world_object_fell(const stWorld *w) {
-  if (!w->dynamic) return 0;
+static int dyn_object_fell(const stWorld *w) {
   const dynInternal *d = w->internal_;
   const stScene *s = w->scene;
   const double *o = w->obj;
@@ -1194,21 +1094,17 @@ int st_world_object_fell(const stWorld *w) {
   return off && o[2] < s->table_top_z;
 }
 
-int st_world_unstable(const stWorld *w) {
-  return w->dynamic && ((const dynInternal *)w->internal_)->unstable;
+static int dyn_unstable(const stWorld *w) { return ((const dynInternal *)w->internal_)->unstable; }
+
+static const char *dyn_unstable_reason(const stWorld *w) {
+  return ((const dynInternal *)w->internal_)->reason;
 }
 
-const char *st_world_unstable_reason(const stWorld *w) {
-  return w->dynamic ? ((const dynInternal *)w->internal_)->reason : "";
-}
-
-void st_world_dynamic_info(const stWorld *w, stDynInfo *info) {
-  memset(info, 0, sizeof *info);
-  if (!w->dynamic) return;
+static void dyn_info(const stWorld *w, stDynInfo *info) {
   const dynInternal *d = w->internal_;
   info->bodies = d->ngroup;
   info->hinges = d->nhinge;
-  info->geoms = d->ngeom;
+  info->geoms = d->geoms.n;
   info->substeps = d->nsub;
   info->solver = d->solver;
   info->rand_interposed = g_rand_interposed;
@@ -1218,11 +1114,21 @@ void st_world_dynamic_info(const stWorld *w, stDynInfo *info) {
   info->robot_in_ode = d->robot_dyn;
 }
 
-void st_world_joint_angles(const stWorld *w, double *angle) {
-  if (!w->dynamic) {
-    st_robot_angles(w->robot, w->qhat, angle);
-    return;
-  }
+static void dyn_joint_angles(const stWorld *w, double *angle) {
   const dynInternal *d = w->internal_;
   memcpy(angle, d->angle, sizeof(double) * (size_t)w->robot->nbody);
 }
+
+static const stWorldBackend dyn_backend = {
+    .destroy = dyn_destroy,
+    .reset = dyn_reset,
+    .update = dyn_update,
+    .joint_angles = dyn_joint_angles,
+    .step = dyn_step,
+    .set_seed = dyn_set_seed,
+    .set_object_table_collision = dyn_set_object_table_collision,
+    .object_fell = dyn_object_fell,
+    .unstable = dyn_unstable,
+    .unstable_reason = dyn_unstable_reason,
+    .info = dyn_info,
+};
