@@ -234,17 +234,13 @@ static int inertia_ok(const double *I) {
   return m1 > 0 && m2 > 0 && m3 > 0;
 }
 
-static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
-  const stRobot *r = w->robot;
-  const stModel *m = r->model;
-  const stScene *sc = w->scene;
-  const int nb = m->nbody;
+/* links into bodies: a revolute joint starts one, a fixed joint folds its child into its
+ * parent's (link_R, link_p: the child's frame in the first link's) */
+static void group_links(dynInternal *d, const stModel *m) {
   static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-
-  /* bodies: a revolute joint starts one, a fixed joint folds its child into the parent's */
   d->link_group[0] = -1;
   memcpy(d->link_R[0], I3, sizeof I3);
-  for (int b = 1; b < nb; b++) {
+  for (int b = 1; b < m->nbody; b++) {
     const int pb = m->body_parent[b];
     if (m->jnt_type[b] == ST_JOINT_FIXED) {
       d->link_group[b] = d->link_group[pb];
@@ -258,135 +254,171 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
       memcpy(d->link_R[b], I3, sizeof I3);
     }
   }
+}
 
-  /* world poses at zero joint angles: hinges measure their angle from this pose */
-  double (*R)[9] = w->R, (*p)[3] = w->p;
-  for (int b = 0; b < nb; b++) d->angle[b] = 0.0;
-  st_robot_fk_angles(r, d->angle, R, p);
+/* world poses (w->R, w->p) at zero joint angles: hinges measure their angle from this pose */
+static void zero_pose(stWorld *w, dynInternal *d) {
+  for (int b = 0; b < w->robot->model->nbody; b++) d->angle[b] = 0.0;
+  st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
+}
 
-  dWorldID wd = d->world;
+/* mass M of body g: the sum of its links about their common centre of mass C, with inertia I
+ * about C, in the first link's axes */
+static stStatus body_mass(const dynInternal *d, const stModel *m, int g, double *M_out,
+                          double C[3], double I[9], char *err, size_t errsz) {
+  const int nb = m->nbody;
+  double M = 0;
+  C[0] = C[1] = C[2] = 0;
+  for (int b = 0; b < nb; b++) {
+    if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
+    double c[3];
+    st__mat3_vec(d->link_R[b], m->body_com[b], c);
+    for (int i = 0; i < 3; i++) C[i] += m->body_mass[b] * (c[i] + d->link_p[b][i]);
+    M += m->body_mass[b];
+  }
+  const int gl = d->glink[g];
+  if (!(M > 0 && isfinite(M))) {
+    st__errf(err, errsz, "link '%s' (joint '%s'): no mass on a moving link and its fixed "
+             "children (expected mass > 0)", m->body_name[gl], m->jnt_name[gl]);
+    return ST_ERR_MODEL;
+  }
+  for (int i = 0; i < 3; i++) C[i] /= M;
+  for (int i = 0; i < 9; i++) I[i] = 0;
+  for (int b = 0; b < nb; b++) {
+    if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
+    const double mb = m->body_mass[b];
+    double c[3], T[9], RI[9], Rt[9];
+    st__mat3_vec(d->link_R[b], m->body_com[b], c);
+    for (int i = 0; i < 3; i++) c[i] += d->link_p[b][i] - C[i];
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) Rt[3 * i + j] = d->link_R[b][3 * j + i];
+    st__mat3_mul(d->link_R[b], m->body_inertia[b], RI);
+    st__mat3_mul(RI, Rt, T); /* R I R^T */
+    const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        I[3 * i + j] += T[3 * i + j] + mb * ((i == j ? c2 : 0.0) - c[i] * c[j]);
+  }
+  if (!inertia_ok(I)) {
+    st__errf(err, errsz, "link '%s': inertia of the moving body is not positive definite "
+             "(expected a physical inertia tensor)", m->body_name[gl]);
+    return ST_ERR_MODEL;
+  }
+  *M_out = M;
+  return ST_OK;
+}
+
+static void place_body(stWorld *w, int g);
+
+/* an ODE body per group of links, with its mass, where the zero pose puts it */
+static stStatus create_bodies(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   for (int g = 0; g < d->ngroup; g++) {
-    /* mass: sum of the links about their common centre of mass, in the first link's axes */
-    double M = 0, C[3] = {0, 0, 0};
-    for (int b = 0; b < nb; b++) {
-      if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
-      double c[3];
-      st__mat3_vec(d->link_R[b], m->body_com[b], c);
-      for (int i = 0; i < 3; i++) C[i] += m->body_mass[b] * (c[i] + d->link_p[b][i]);
-      M += m->body_mass[b];
-    }
-    const int gl = d->glink[g];
-    if (!(M > 0 && isfinite(M))) {
-      st__errf(err, errsz, "link '%s' (joint '%s'): no mass on a moving link and its fixed "
-               "children (expected mass > 0)", m->body_name[gl], m->jnt_name[gl]);
-      return ST_ERR_MODEL;
-    }
-    for (int i = 0; i < 3; i++) C[i] /= M;
-    double I[9] = {0};
-    for (int b = 0; b < nb; b++) {
-      if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
-      const double mb = m->body_mass[b];
-      double c[3], T[9], RI[9], Rt[9];
-      st__mat3_vec(d->link_R[b], m->body_com[b], c);
-      for (int i = 0; i < 3; i++) c[i] += d->link_p[b][i] - C[i];
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) Rt[3 * i + j] = d->link_R[b][3 * j + i];
-      st__mat3_mul(d->link_R[b], m->body_inertia[b], RI);
-      st__mat3_mul(RI, Rt, T); /* R I R^T */
-      const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-          I[3 * i + j] += T[3 * i + j] + mb * ((i == j ? c2 : 0.0) - c[i] * c[j]);
-    }
-    if (!inertia_ok(I)) {
-      st__errf(err, errsz, "link '%s': inertia of the moving body is not positive definite "
-               "(expected a physical inertia tensor)", m->body_name[gl]);
-      return ST_ERR_MODEL;
-    }
+    double M, C[3], I[9];
+    stStatus st = body_mass(d, w->robot->model, g, &M, C, I, err, errsz);
+    if (st) return st;
     memcpy(d->gcom[g], C, sizeof C);
-    dBodyID bd = dBodyCreate(wd);
-    d->gbody[g] = bd;
+    d->gbody[g] = dBodyCreate(d->world);
     dMass ms;
     dMassSetZero(&ms);
     dMassSetParameters(&ms, M, 0, 0, 0, I[0], I[4], I[8], I[1], I[2], I[5]);
-    dBodySetMass(bd, &ms);
-    double c[3];
-    st__mat3_vec(R[gl], C, c);
-    dBodySetPosition(bd, p[gl][0] + c[0], p[gl][1] + c[1], p[gl][2] + c[2]);
-    dMatrix3 Ro;
-    st__mat3_to_ode(R[gl], Ro);
-    dBodySetRotation(bd, Ro);
+    dBodySetMass(d->gbody[g], &ms);
+    place_body(w, g);
   }
+  return ST_OK;
+}
 
-  /* hinges: anchored at the joint origin, axis from the model, stops = the qhat range */
-  for (int b = 1; b < nb; b++) {
+/* the hinge of link b: anchored at the joint origin, axis from the model, stops stop_margin
+ * outside the qhat range, a velocity motor of torque up to the URDF effort times effort_scale */
+static stStatus create_hinge(stWorld *w, dynInternal *d, int b, char *err, size_t errsz) {
+  const stRobot *r = w->robot;
+  const stModel *m = r->model;
+  const double lo = r->body_range[b][0], hi = r->body_range[b][1];
+  const double effort = m->jnt_effort[b] * d->def.effort_scale;
+  const double *a = m->jnt_axis[b];
+  const double an = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (!(isfinite(lo) && isfinite(hi) && lo < hi && hi - lo < 2 * ST_PI) ||
+      !(effort >= 0 && isfinite(effort)) || !(an > 1e-9 && isfinite(an))) {
+    st__errf(err, errsz, "joint '%s': range %g..%g rad, effort %g N m, axis norm %g (expected "
+             "a finite range narrower than 360 degrees, a finite effort >= 0 and an axis)",
+             m->jnt_name[b], lo, hi, effort, an);
+    return ST_ERR_MODEL;
+  }
+  const int pg = d->link_group[m->body_parent[b]];
+  dJointID j = dJointCreateHinge(d->world, 0);
+  dJointAttach(j, d->gbody[d->link_group[b]], pg >= 0 ? d->gbody[pg] : 0);
+  dJointSetHingeAnchor(j, w->p[b][0], w->p[b][1], w->p[b][2]);
+  double ax[3];
+  st__mat3_vec(w->R[b], a, ax);
+  dJointSetHingeAxis(j, ax[0], ax[1], ax[2]);
+  dJointSetHingeParam(j, dParamLoStop, lo - d->def.stop_margin);
+  dJointSetHingeParam(j, dParamHiStop, hi + d->def.stop_margin);
+  dJointSetHingeParam(j, dParamFudgeFactor, d->def.fudge_factor);
+  dJointSetHingeParam(j, dParamStopERP, d->def.erp);
+  dJointSetHingeParam(j, dParamStopCFM, d->def.cfm);
+  dJointSetHingeParam(j, dParamCFM, d->def.cfm);
+  dJointSetHingeParam(j, dParamVel, 0.0);
+  dJointSetHingeParam(j, dParamFMax, effort);
+  dynHinge *hg = &d->hinge[d->nhinge++];
+  hg->j = j;
+  hg->link = b;
+  hg->dof = r->body_dof[b];
+  hg->lo = lo;
+  hg->hi = hi;
+  hg->lo_set = lo - d->def.stop_margin;
+  hg->hi_set = hi + d->def.stop_margin;
+  return ST_OK;
+}
+
+static stStatus create_hinges(stWorld *w, dynInternal *d, char *err, size_t errsz) {
+  const stModel *m = w->robot->model;
+  for (int b = 1; b < m->nbody; b++) {
     if (m->jnt_type[b] != ST_JOINT_REVOLUTE) continue;
-    const double lo = r->body_range[b][0], hi = r->body_range[b][1];
-    const double effort = m->jnt_effort[b] * d->def.effort_scale;
-    const double *a = m->jnt_axis[b];
-    const double an = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    if (!(isfinite(lo) && isfinite(hi) && lo < hi && hi - lo < 2 * ST_PI) ||
-        !(effort >= 0 && isfinite(effort)) || !(an > 1e-9 && isfinite(an))) {
-      st__errf(err, errsz, "joint '%s': range %g..%g rad, effort %g N m, axis norm %g (expected "
-               "a finite range narrower than 360 degrees, a finite effort >= 0 and an axis)",
-               m->jnt_name[b], lo, hi, effort, an);
-      return ST_ERR_MODEL;
-    }
-    const int pg = d->link_group[m->body_parent[b]];
-    dJointID j = dJointCreateHinge(wd, 0);
-    dJointAttach(j, d->gbody[d->link_group[b]], pg >= 0 ? d->gbody[pg] : 0);
-    dJointSetHingeAnchor(j, p[b][0], p[b][1], p[b][2]);
-    double ax[3];
-    st__mat3_vec(R[b], a, ax);
-    dJointSetHingeAxis(j, ax[0], ax[1], ax[2]);
-    dJointSetHingeParam(j, dParamLoStop, lo - d->def.stop_margin);
-    dJointSetHingeParam(j, dParamHiStop, hi + d->def.stop_margin);
-    dJointSetHingeParam(j, dParamFudgeFactor, d->def.fudge_factor);
-    dJointSetHingeParam(j, dParamStopERP, d->def.erp);
-    dJointSetHingeParam(j, dParamStopCFM, d->def.cfm);
-    dJointSetHingeParam(j, dParamCFM, d->def.cfm);
-    dJointSetHingeParam(j, dParamVel, 0.0);
-    dJointSetHingeParam(j, dParamFMax, effort);
-    dynHinge *hg = &d->hinge[d->nhinge++];
-    hg->j = j;
-    hg->link = b;
-    hg->dof = r->body_dof[b];
-    hg->lo = lo;
-    hg->hi = hi;
-    hg->lo_set = lo - d->def.stop_margin;
-    hg->hi_set = hi + d->def.stop_margin;
+    stStatus st = create_hinge(w, d, b, err, errsz);
+    if (st) return st;
   }
+  return ST_OK;
+}
 
-  /* geometries (lib/world_geom.c), attached to their body with the offset of their link and
-   * of the COM */
-  stStatus st = st__robot_geoms_create(m, 1, &d->geoms, err, errsz);
+/* geometry i on its body, with the offset of its link and of the body's centre of mass (on
+ * the static root: placed in the world, whose frame the root's is) */
+static void attach_geom(stWorld *w, dynInternal *d, int i) {
+  const stRobot *r = w->robot;
+  const stModel *m = r->model;
+  const int l = m->geom_body[i], g = d->link_group[l];
+  dGeomID geom = d->geoms.g[i];
+  double gp[3], gR[9];
+  st__mat3_vec(d->link_R[l], m->geom_pos[i], gp);
+  for (int k = 0; k < 3; k++) gp[k] += d->link_p[l][k];
+  st__mat3_mul(d->link_R[l], m->geom_rot[i], gR);
+  dMatrix3 Ro;
+  st__mat3_to_ode(gR, Ro);
+  if (g >= 0) {
+    dGeomSetBody(geom, d->gbody[g]);
+    dGeomSetOffsetRotation(geom, Ro);
+    dGeomSetOffsetPosition(geom, gp[0] - d->gcom[g][0], gp[1] - d->gcom[g][1],
+                           gp[2] - d->gcom[g][2]);
+  } else {
+    dGeomSetRotation(geom, Ro);
+    dGeomSetPosition(geom, gp[0], gp[1], gp[2]);
+  }
+  dynGeom *dg = &d->geom[i];
+  dg->link = l;
+  dg->dyn = g >= 0;
+  dg->is_arm = r->body_is_arm[l];
+  dg->touch = r->body_touch[l];
+}
+
+/* the robot's geometries (lib/world_geom.c), each attached */
+static stStatus create_geoms(stWorld *w, dynInternal *d, char *err, size_t errsz) {
+  stStatus st = st__robot_geoms_create(w->robot->model, 1, &d->geoms, err, errsz);
   if (st) return st;
-  for (int i = 0; i < d->geoms.n; i++) {
-    const int l = m->geom_body[i], g = d->link_group[l];
-    dGeomID geom = d->geoms.g[i];
-    double gp[3], gR[9];
-    st__mat3_vec(d->link_R[l], m->geom_pos[i], gp);
-    for (int k = 0; k < 3; k++) gp[k] += d->link_p[l][k];
-    st__mat3_mul(d->link_R[l], m->geom_rot[i], gR);
-    dMatrix3 Ro;
-    st__mat3_to_ode(gR, Ro);
-    if (g >= 0) {
-      dGeomSetBody(geom, d->gbody[g]);
-      dGeomSetOffsetRotation(geom, Ro);
-      dGeomSetOffsetPosition(geom, gp[0] - d->gcom[g][0], gp[1] - d->gcom[g][1],
-                             gp[2] - d->gcom[g][2]);
-    } else {
-      dGeomSetRotation(geom, Ro); /* the root link is the world frame */
-      dGeomSetPosition(geom, gp[0], gp[1], gp[2]);
-    }
-    dynGeom *dg = &d->geom[i];
-    dg->link = l;
-    dg->dyn = g >= 0;
-    dg->is_arm = r->body_is_arm[l];
-    dg->touch = r->body_touch[l];
-  }
+  for (int i = 0; i < d->geoms.n; i++) attach_geom(w, d, i);
+  return ST_OK;
+}
 
-  /* scene: table, floor, and the object (sphere + flattened base, one body) */
+/* scene: table, floor, and the object (sphere + flattened base, one body) */
+static stStatus create_scene(stWorld *w, dynInternal *d, char *err, size_t errsz) {
+  const stScene *sc = w->scene;
   if (!(sc->obj_radius > 0 && sc->obj_mass > 0 && sc->base_radius >= 0 && sc->base_height >= 0 &&
         sc->base_height <= 2 * sc->obj_radius)) {
     st__errf(err, errsz, "scene: object radius %g, mass %g, base %g x %g (expected positive "
@@ -402,7 +434,7 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   st__scene_geoms_create(sc, &d->scene);
   dGeomGetAABB(d->scene.table, d->table_aabb);
   d->floor = dCreatePlane(0, 0, 0, 1, d->def.floor_z);
-  d->ball = dBodyCreate(wd);
+  d->ball = dBodyCreate(d->world);
   dMass ms;
   dMassSetSphereTotal(&ms, sc->obj_mass, sc->obj_radius);
   dBodySetMass(d->ball, &ms);
@@ -426,6 +458,17 @@ static int name_listed(const char *list, const char *name) {
     s += len;
   }
   return 0;
+}
+
+/* how many comma-separated names list has */
+static int names_count(const char *list) {
+  int n = 0;
+  for (const char *s = list; *s;) {
+    while (*s == ',' || *s == ' ') s++;
+    if (*s) n++;
+    s += strcspn(s, ",");
+  }
+  return n;
 }
 
 /* dynamics.kinematic_joints: those hinges become exact servos (joint disabled, body kinematic).
@@ -453,12 +496,7 @@ static stStatus mark_kinematic(dynInternal *d, const stModel *m, char *err, size
     dBodySetKinematic(d->gbody[i]);
     found++;
   }
-  int listed = 0;
-  for (const char *s = d->def.kinematic_joints; *s;) {
-    while (*s == ',' || *s == ' ') s++;
-    if (*s) listed++;
-    s += strcspn(s, ",");
-  }
+  const int listed = names_count(d->def.kinematic_joints);
   if (found != listed) {
     st__errf(err, errsz, "dynamics.kinematic_joints: '%s' names %d joints, %d of them hinges of "
              "the model (expected names of revolute joints, each once)", d->def.kinematic_joints,
@@ -467,6 +505,18 @@ static stStatus mark_kinematic(dynInternal *d, const stModel *m, char *err, size
   }
   d->nkin = found;
   return ST_OK;
+}
+
+/* the whole ODE world, phase by phase */
+static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
+  group_links(d, w->robot->model);
+  zero_pose(w, d);
+  stStatus st = create_bodies(w, d, err, errsz);
+  if (!st) st = create_hinges(w, d, err, errsz);
+  if (!st) st = create_geoms(w, d, err, errsz);
+  if (!st) st = create_scene(w, d, err, errsz);
+  if (!st) st = mark_kinematic(d, w->robot->model, err, errsz);
+  return st;
 }
 
 /* the per-body and per-geometry arrays; 0 when out of memory */
@@ -530,7 +580,6 @@ stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz
   if (!alloc_arrays(d, w->robot->model) || !create_ode_world(d))
     return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
   stStatus st = build(w, d, err, errsz);
-  if (!st) st = mark_kinematic(d, w->robot->model, err, errsz);
   if (st) return st;
   d->obj_table = 1;
   return ST_OK;
@@ -735,20 +784,24 @@ static int bodies_ok(stWorld *w) {
   return body_ok(w, d->ball, "object");
 }
 
+/* body g where forward kinematics (w->R, w->p) puts its first link */
+static void place_body(stWorld *w, int g) {
+  dynInternal *d = w->internal_;
+  const int gl = d->glink[g];
+  double c[3];
+  st__mat3_vec(w->R[gl], d->gcom[g], c);
+  dBodyID b = d->gbody[g];
+  dBodySetPosition(b, w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
+  dMatrix3 Ro;
+  st__mat3_to_ode(w->R[gl], Ro);
+  dBodySetRotation(b, Ro);
+}
+
 /* places every robot body where forward kinematics of d->angle puts it (FK into w->R / w->p) */
 static void place_bodies(stWorld *w) {
   dynInternal *d = w->internal_;
   st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
-  for (int g = 0; g < d->ngroup; g++) {
-    const int gl = d->glink[g];
-    double c[3];
-    st__mat3_vec(w->R[gl], d->gcom[g], c);
-    dBodyID b = d->gbody[g];
-    dBodySetPosition(b, w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
-    dMatrix3 Ro;
-    st__mat3_to_ode(w->R[gl], Ro);
-    dBodySetRotation(b, Ro);
-  }
+  for (int g = 0; g < d->ngroup; g++) place_body(w, g);
 }
 
 /* sets every robot body's velocity (only_kin: every kinematic body's) to what the joint
@@ -793,17 +846,10 @@ static void prescribe_velocities(stWorld *w, int only_kin) {
 static void place_kinematic(stWorld *w) {
   dynInternal *d = w->internal_;
   st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
-  for (int g = 0; g < d->ngroup && d->hinge[g].kin; g++) {
-    const int gl = d->glink[g];
-    double c[3];
-    st__mat3_vec(w->R[gl], d->gcom[g], c);
-    dBodySetPosition(d->gbody[g], w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
-    dMatrix3 Ro;
-    st__mat3_to_ode(w->R[gl], Ro);
-    dBodySetRotation(d->gbody[g], Ro);
-  }
+  for (int g = 0; g < d->ngroup && d->hinge[g].kin; g++) place_body(w, g);
   prescribe_velocities(w, 1);
 }
+
 
 /* free motion -> ODE: bodies at the kinematic pose, moving at the servo velocities */
 static void robot_to_ode(stWorld *w) {
@@ -845,11 +891,25 @@ static void read_state(stWorld *w) {
 
 /* ---- reset ------------------------------------------------------------------------------- */
 
+/* the stops of a hinge at lo, hi; ODE ignores a low stop above the high one (and vice versa):
+ * they are set in a safe order */
+static void set_stops(dynHinge *hg, double lo, double hi) {
+  if (lo > hg->hi_set) {
+    dJointSetHingeParam(hg->j, dParamHiStop, hi);
+    dJointSetHingeParam(hg->j, dParamLoStop, lo);
+  } else {
+    dJointSetHingeParam(hg->j, dParamLoStop, lo);
+    dJointSetHingeParam(hg->j, dParamHiStop, hi);
+  }
+  hg->lo_set = lo;
+  hg->hi_set = hi;
+}
+
 static void dyn_set_seed(stWorld *w, uint64_t key) { ((dynInternal *)w->internal_)->seed = key; }
 
-static void dyn_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]) {
+/* the robot's bodies at rest in the posture qhat (clamped to [0, 1], NaN -> 0) */
+static void reset_pose(stWorld *w, const double *qhat) {
   dynInternal *d = w->internal_;
-  st__ode_init();
   double q[ST_NDOF];
   for (int k = 0; k < ST_NDOF; k++)
     q[k] = !(qhat[k] >= 0.0) ? 0.0 : qhat[k] > 1.0 ? 1.0 : qhat[k]; /* NaN -> 0 */
@@ -857,6 +917,10 @@ static void dyn_reset(stWorld *w, const double *qhat, const double obj[3], const
   for (int i = 0; i < d->nhinge; i++) d->vel[i] = 0.0;
   place_bodies(w);
   prescribe_velocities(w, 0); /* at rest */
+}
+
+/* the object at rest at obj (at the origin when obj is not finite); 1 when it is finite */
+static int reset_object(dynInternal *d, const double obj[3]) {
   const int ok = isfinite(obj[0]) && isfinite(obj[1]) && isfinite(obj[2]);
   dBodySetPosition(d->ball, ok ? obj[0] : 0, ok ? obj[1] : 0, ok ? obj[2] : 0);
   static const dMatrix3 I = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
@@ -866,23 +930,23 @@ static void dyn_reset(stWorld *w, const double *qhat, const double obj[3], const
   dBodySetForce(d->ball, 0, 0, 0);
   dBodySetTorque(d->ball, 0, 0, 0);
   dBodyEnable(d->ball);
+  return ok;
+}
+
+/* motors at rest, the stops as built (speculative_stops may have moved them), the robot's
+ * bodies in ODE's step */
+static void reset_joints(dynInternal *d) {
   for (int i = 0; i < d->nhinge; i++) {
     dynHinge *hg = &d->hinge[i];
     dJointSetHingeParam(hg->j, dParamVel, 0.0);
-    /* the stops as built (speculative_stops may have moved them) */
-    const double lo = hg->lo - d->def.stop_margin, hi = hg->hi + d->def.stop_margin;
-    if (lo > hg->hi_set) {
-      dJointSetHingeParam(hg->j, dParamHiStop, hi);
-      dJointSetHingeParam(hg->j, dParamLoStop, lo);
-    } else {
-      dJointSetHingeParam(hg->j, dParamLoStop, lo);
-      dJointSetHingeParam(hg->j, dParamHiStop, hi);
-    }
-    hg->lo_set = lo;
-    hg->hi_set = hi;
+    set_stops(hg, hg->lo - d->def.stop_margin, hg->hi + d->def.stop_margin);
   }
   for (int g = 0; g < d->ngroup; g++) dBodyEnable(d->gbody[g]);
   d->robot_dyn = 1;
+}
+
+/* the per-trial counters, flags and quickstep's generator */
+static void reset_counters(dynInternal *d) {
   d->obj_table = 1;
   d->messages = 0;
   d->retries = 0;
@@ -890,6 +954,15 @@ static void dyn_reset(stWorld *w, const double *qhat, const double obj[3], const
   d->unstable = 0;
   d->reason[0] = 0;
   d->rand_state = (uint32_t)(st_rng_mix64(d->seed ^ 0x6f64655f72616e64ull) >> 32);
+}
+
+static void dyn_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]) {
+  dynInternal *d = w->internal_;
+  st__ode_init();
+  reset_pose(w, qhat);
+  const int ok = reset_object(d, obj);
+  reset_joints(d);
+  reset_counters(d);
   w->step = 0;
   memcpy(w->obj_start, obj, sizeof w->obj_start);
   memcpy(w->target, target, sizeof w->target);
@@ -929,7 +1002,7 @@ static void servo(stWorld *w, const double *y) {
  * stops a little early rather than late. */
 static void speculative_stops(dynInternal *d, double vmax) {
   for (int i = 0; i < d->nhinge; i++) {
-    const dynHinge *hg = &d->hinge[i];
+    dynHinge *hg = &d->hinge[i];
     if (hg->kin) continue;
     const double rate = dJointGetHingeAngleRate(hg->j);
     double lo = hg->lo - d->def.stop_margin, hi = hg->hi + d->def.stop_margin;
@@ -940,17 +1013,7 @@ static void speculative_stops(dynInternal *d, double vmax) {
       if (a + r < lo && a > lo) lo = a;
       if (a + r > hi && a < hi) hi = a;
     }
-    if (lo == hg->lo_set && hi == hg->hi_set) continue;
-    /* ODE ignores a low stop above the high one (and vice versa): set them in a safe order */
-    if (lo > hg->hi_set) {
-      dJointSetHingeParam(hg->j, dParamHiStop, hi);
-      dJointSetHingeParam(hg->j, dParamLoStop, lo);
-    } else {
-      dJointSetHingeParam(hg->j, dParamLoStop, lo);
-      dJointSetHingeParam(hg->j, dParamHiStop, hi);
-    }
-    d->hinge[i].lo_set = lo;
-    d->hinge[i].hi_set = hi;
+    if (lo != hg->lo_set || hi != hg->hi_set) set_stops(hg, lo, hi);
   }
 }
 
@@ -1013,44 +1076,73 @@ static int ode_substep(stWorld *w, stContacts *c) {
   }
 }
 
-static void dyn_step(stWorld *w, const double *y) {
-  dynInternal *d = w->internal_;
-  if (d->unstable) return;
+/* 1 when every command is finite; else the world becomes unstable */
+static int commands_ok(stWorld *w, const double *y) {
   for (int k = 0; k < ST_NDOF; k++)
     if (!isfinite(y[k])) {
       set_unstable(w, "command y[%d] = %g is not finite", k, y[k]);
-      return;
+      return 0;
     }
+  return 1;
+}
+
+/* one sub-step: the servo velocities, then free motion while nothing can touch within it (the
+ * servos are exact: they never saturate without contact; the robot moves kinematically and
+ * ODE steps the object alone), else the robot in ODE's step. Contacts are ORed into c. Returns
+ * 0 when the world became unstable. */
+static int substep(stWorld *w, const double *y, stContacts *c) {
+  dynInternal *d = w->internal_;
+  servo(w, y);
+  if (!d->robot_dyn && robot_near(w, d->def.contact_margin)) robot_to_ode(w);
+  if (d->robot_dyn) {
+    for (int i = 0; i < d->nhinge; i++)
+      if (!d->hinge[i].kin) dJointSetHingeParam(d->hinge[i].j, dParamVel, d->vel[i]);
+    if (d->nkin) place_kinematic(w);
+    speculative_stops(d, w->robot->max_velocity);
+    d->dyn_substeps++;
+  } else {
+    for (int i = 0; i < d->nhinge; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
+    st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
+  }
+  const int ok = ode_substep(w, c);
+  if (d->robot_dyn) /* the exact servos advance as in free motion */
+    for (int i = 0; i < d->nkin; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
+  if (!ok) {
+    set_unstable(w, "ODE could not allocate its step memory");
+    return 0;
+  }
+  return bodies_ok(w);
+}
+
+/* 1 when every joint is within its range by limit_tolerance; else the world becomes unstable */
+static int joints_in_range(stWorld *w) {
+  dynInternal *d = w->internal_;
+  for (int i = 0; i < d->nhinge; i++) {
+    const dynHinge *hg = &d->hinge[i];
+    const double a = d->angle[hg->link];
+    const double tol = d->def.limit_tolerance;
+    if (!isfinite(a) || a < hg->lo - tol || a > hg->hi + tol) {
+      set_unstable(w, "joint '%s' at %.2f deg, beyond its range %.2f..%.2f deg by more than "
+                   "limit_tolerance_deg %.2f", w->robot->model->jnt_name[hg->link], a / ST_DEG,
+                   hg->lo / ST_DEG, hg->hi / ST_DEG, d->def.limit_tolerance / ST_DEG);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+static void dyn_step(stWorld *w, const double *y) {
+  dynInternal *d = w->internal_;
+  if (d->unstable || !commands_ok(w, y)) return;
   st__ode_init();
   stContacts acc;
   memset(&acc, 0, sizeof acc);
   for (int s = 0; s < d->nsub; s++) {
-    servo(w, y);
-    /* free motion while nothing can touch within this sub-step: the servos are exact (they
-     * never saturate without contact), the robot moves kinematically and ODE steps the object
-     * alone; else the robot joins ODE's step */
-    if (!d->robot_dyn && robot_near(w, d->def.contact_margin)) robot_to_ode(w);
     stContacts c;
     memset(&c, 0, sizeof c);
-    if (d->robot_dyn) {
-      for (int i = 0; i < d->nhinge; i++)
-        if (!d->hinge[i].kin) dJointSetHingeParam(d->hinge[i].j, dParamVel, d->vel[i]);
-      if (d->nkin) place_kinematic(w);
-      speculative_stops(d, w->robot->max_velocity);
-      d->dyn_substeps++;
-    } else {
-      for (int i = 0; i < d->nhinge; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
-      st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
-    }
-    const int ok = ode_substep(w, &c);
-    if (d->robot_dyn) /* the exact servos advance as in free motion */
-      for (int i = 0; i < d->nkin; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
+    const int fine = substep(w, y, &c);
     if (s > 0) contacts_or(&acc, &c); /* the state after this control step's previous sub-step */
-    if (!ok) {
-      set_unstable(w, "ODE could not allocate its step memory");
-      break;
-    }
-    if (!bodies_ok(w)) break;
+    if (!fine) break;
   }
   w->step++;
   if (d->unstable) return;
@@ -1062,17 +1154,7 @@ static void dyn_step(stWorld *w, const double *y) {
   contacts_or(&acc, &c);
   w->contacts = acc;
   read_state(w);
-  for (int i = 0; i < d->nhinge; i++) {
-    const dynHinge *hg = &d->hinge[i];
-    const double a = d->angle[hg->link];
-    const double tol = d->def.limit_tolerance;
-    if (!isfinite(a) || a < hg->lo - tol || a > hg->hi + tol) {
-      set_unstable(w, "joint '%s' at %.2f deg, beyond its range %.2f..%.2f deg by more than "
-                   "limit_tolerance_deg %.2f", w->robot->model->jnt_name[hg->link], a / ST_DEG,
-                   hg->lo / ST_DEG, hg->hi / ST_DEG, d->def.limit_tolerance / ST_DEG);
-      return;
-    }
-  }
+  if (!joints_in_range(w)) return;
   /* back to free motion once the robot is clear of the table and the object */
   if (d->robot_dyn && d->def.free_motion && !robot_near(w, d->def.contact_margin))
     robot_to_free(w, 1);
