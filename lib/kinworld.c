@@ -33,7 +33,8 @@ stStatus st__kin_create(stWorld *w, char *err, size_t errsz) {
   if (st) return st;
   st__scene_geoms_create(scene, &k->scene);
   /* the base's bottom rim sticks out of the sphere: bound both */
-  double rim = sqrt(scene->base_radius * scene->base_radius + scene->obj_radius * scene->obj_radius);
+  const double rim =
+      sqrt(scene->base_radius * scene->base_radius + scene->obj_radius * scene->obj_radius);
   k->obj_bound = rim > scene->obj_radius ? rim : scene->obj_radius;
   return ST_OK;
 }
@@ -89,7 +90,8 @@ static int table_contact(const stWorld *w, int gi, const double c[3], const doub
     int inside_xy = 1;
     for (int i = 0; i < 3; i++) {
       if (c[i] + half[i] < s->table_lo[i] || c[i] - half[i] > s->table_hi[i]) return 0;
-      if (i < 2 && (c[i] - half[i] < s->table_lo[i] || c[i] + half[i] > s->table_hi[i])) inside_xy = 0;
+      if (i < 2 && (c[i] - half[i] < s->table_lo[i] || c[i] + half[i] > s->table_hi[i]))
+        inside_xy = 0;
     }
     if (inside_xy) return 1;
   }
@@ -123,7 +125,8 @@ static void geom_touches(stWorld *w, int gi, int table, int object, stContacts *
     c->arm_table = 1;
     if (t >= 0) c->touch[t] = 1;
   }
-  if (object && (touches(k->geoms.g[gi], k->scene.ball) || touches(k->geoms.g[gi], k->scene.base))) {
+  const dGeomID g = k->geoms.g[gi];
+  if (object && (touches(g, k->scene.ball) || touches(g, k->scene.base))) {
     c->robot_object = 1;
     if (t >= 0) c->touch[t] = c->touch_object[t] = 1;
   }

@@ -69,7 +69,8 @@ void st_world_reset(stWorld *w, const double *qhat, const double obj[3], const d
 
 void st_world_update(stWorld *w) { backend(w)->update(w); }
 
-double st_actuate(double qhat, double y, double alpha, double vmax_deg, double dt, double range_deg) {
+double st_actuate(double qhat, double y, double alpha, double vmax_deg, double dt,
+                  double range_deg) {
   double v = alpha * (y - qhat); /* deg/s */
   if (v > vmax_deg) v = vmax_deg;
   if (v < -vmax_deg) v = -vmax_deg;

@@ -106,7 +106,8 @@ int st__geom_half_aabb(const stModel *m, int gi, const double *Rg, double half[3
       return 1;
     case ST_GEOM_BOX:
       for (int i = 0; i < 3; i++)
-        half[i] = 0.5 * (fabs(Rg[3 * i]) * s[0] + fabs(Rg[3 * i + 1]) * s[1] + fabs(Rg[3 * i + 2]) * s[2]);
+        half[i] = 0.5 * (fabs(Rg[3 * i]) * s[0] + fabs(Rg[3 * i + 1]) * s[1] +
+                         fabs(Rg[3 * i + 2]) * s[2]);
       return 1;
     case ST_GEOM_CYLINDER:
       for (int i = 0; i < 3; i++) {

@@ -26,7 +26,8 @@ static inline void st__mat3_vec(const double *A, const double *x, double *y) {
  * dynamic world's st__mat3_vec then + p rounds differently, and each keeps its own) */
 static inline void st__frame_point(const double R[9], const double p[3], const double l[3],
                                    double out[3]) {
-  for (int i = 0; i < 3; i++) out[i] = p[i] + R[3 * i] * l[0] + R[3 * i + 1] * l[1] + R[3 * i + 2] * l[2];
+  for (int i = 0; i < 3; i++)
+    out[i] = p[i] + R[3 * i] * l[0] + R[3 * i + 1] * l[1] + R[3 * i + 2] * l[2];
 }
 
 /* R in ODE's layout (3x4, rows padded) */
@@ -41,7 +42,8 @@ static inline void st__mat3_to_ode(const double *R, dMatrix3 out) {
 
 /* 1 when two ODE AABBs (min x, max x, min y, ...) overlap or touch */
 static inline int st__aabb_overlap(const dReal *a, const dReal *b) {
-  return a[0] <= b[1] && b[0] <= a[1] && a[2] <= b[3] && b[2] <= a[3] && a[4] <= b[5] && b[4] <= a[5];
+  return a[0] <= b[1] && b[0] <= a[1] && a[2] <= b[3] && b[2] <= a[3] && a[4] <= b[5] &&
+         b[4] <= a[5];
 }
 
 /* The ODE geometry of every collision shape of a model, unplaced and on no body: g[i] is
