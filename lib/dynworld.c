@@ -262,14 +262,13 @@ static void zero_pose(stWorld *w, dynInternal *d) {
   st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
 }
 
-/* mass M of body g: the sum of its links about their common centre of mass C, with inertia I
- * about C, in the first link's axes */
+/* mass M of body g, the sum of its links', and their common centre of mass C in the first
+ * link's frame */
 static stStatus body_mass(const dynInternal *d, const stModel *m, int g, double *M_out,
-                          double C[3], double I[9], char *err, size_t errsz) {
-  const int nb = m->nbody;
+                          double C[3], char *err, size_t errsz) {
   double M = 0;
   C[0] = C[1] = C[2] = 0;
-  for (int b = 0; b < nb; b++) {
+  for (int b = 0; b < m->nbody; b++) {
     if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
     double c[3];
     st__mat3_vec(d->link_R[b], m->body_com[b], c);
@@ -283,8 +282,16 @@ static stStatus body_mass(const dynInternal *d, const stModel *m, int g, double 
     return ST_ERR_MODEL;
   }
   for (int i = 0; i < 3; i++) C[i] /= M;
+  *M_out = M;
+  return ST_OK;
+}
+
+/* inertia I of body g about its centre of mass C, in the first link's axes: its links'
+ * inertias rotated and moved there (parallel axes) */
+static stStatus body_inertia(const dynInternal *d, const stModel *m, int g, const double C[3],
+                             double I[9], char *err, size_t errsz) {
   for (int i = 0; i < 9; i++) I[i] = 0;
-  for (int b = 0; b < nb; b++) {
+  for (int b = 0; b < m->nbody; b++) {
     if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
     const double mb = m->body_mass[b];
     double c[3], T[9], RI[9], Rt[9];
@@ -301,10 +308,9 @@ static stStatus body_mass(const dynInternal *d, const stModel *m, int g, double 
   }
   if (!inertia_ok(I)) {
     st__errf(err, errsz, "link '%s': inertia of the moving body is not positive definite "
-             "(expected a physical inertia tensor)", m->body_name[gl]);
+             "(expected a physical inertia tensor)", m->body_name[d->glink[g]]);
     return ST_ERR_MODEL;
   }
-  *M_out = M;
   return ST_OK;
 }
 
@@ -314,7 +320,8 @@ static void place_body(stWorld *w, int g);
 static stStatus create_bodies(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   for (int g = 0; g < d->ngroup; g++) {
     double M, C[3], I[9];
-    stStatus st = body_mass(d, w->robot->model, g, &M, C, I, err, errsz);
+    stStatus st = body_mass(d, w->robot->model, g, &M, C, err, errsz);
+    if (!st) st = body_inertia(d, w->robot->model, g, C, I, err, errsz);
     if (st) return st;
     memcpy(d->gcom[g], C, sizeof C);
     d->gbody[g] = dBodyCreate(d->world);
