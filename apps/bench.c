@@ -36,6 +36,14 @@ static double now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* CPU seconds of the whole process: per-core rates that another load on the machine barely
+ * moves (wall-clock rates are printed beside them) */
+static double cpu_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);
@@ -168,6 +176,8 @@ static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int base
   double *rate = malloc(sizeof *rate * (size_t)reps), *base = malloc(sizeof *base * (size_t)reps);
   double *per_trial = malloc(sizeof *per_trial * (size_t)trials);
   double *held = malloc(sizeof *held * (size_t)reps);
+  double *cpu = malloc(sizeof *cpu * (size_t)reps), *bcpu = malloc(sizeof *bcpu * (size_t)reps);
+  double *hcpu = malloc(sizeof *hcpu * (size_t)reps);
   const int held_trials = 4 * ST_NPOSTURE;
   long kept = 0;
   dynStats st = {0, 0, 0}, bst = {0, 0, 0};
@@ -177,34 +187,47 @@ static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int base
   for (int rr = 0; rr < 2 * reps; rr++) {
     const int is_base = rr % 2, r = rr / 2; /* interleaved so drifts hit both alike */
     if (is_base && !baseline) continue;
+    const double c0 = cpu_now();
     double dt = dyn_run(cfg, robot, &scene, is_base ? &base_def : &def, &sd, np, ngenome, q0, trials,
                         steps, threads, per_trial, is_base ? &bst : &st, is_base ? &binfo : &info);
     (is_base ? base : rate)[r] = (double)trials * steps / dt;
-    if (!is_base)
+    (is_base ? bcpu : cpu)[r] = (double)trials * steps / (cpu_now() - c0);
+    if (!is_base) {
+      const double c1 = cpu_now();
       held[r] = (double)held_trials * steps /
                 held_run(robot, &scene, &def, q0, held_trials, steps, threads, &kept);
+      hcpu[r] = (double)held_trials * steps / (cpu_now() - c1);
+    }
   }
+  qsort(cpu, (size_t)reps, sizeof *cpu, cmp_double);
+  qsort(bcpu, (size_t)reps, sizeof *bcpu, cmp_double);
+  qsort(hcpu, (size_t)reps, sizeof *hcpu, cmp_double);
   qsort(rate, (size_t)reps, sizeof *rate, cmp_double);
   qsort(base, (size_t)reps, sizeof *base, cmp_double);
   qsort(held, (size_t)reps, sizeof *held, cmp_double);
   const double med = rate[reps / 2], med_base = base[reps / 2];
   printf("mode=dynamic steps_per_s=%.0f per_core=%.0f threads=%d bodies=%d substep=%g "
          "iterations=%d solver=%s reps=%d trials=%d steps_per_trial=%d robot_in_ode=%.0f%% "
-         "unstable=%ld held=%.0f held_per_core=%.0f held_kept=%ld/%ld\n",
+         "unstable=%ld held=%.0f held_per_core=%.0f held_kept=%ld/%ld cpu_per_core=%.0f "
+         "held_cpu_per_core=%.0f\n",
          med, med / threads, threads, info.bodies, def.substep, def.iterations,
          st_config_enum_name("dynamics", "solver", info.solver), reps, trials, steps,
          st.substeps ? 100.0 * (double)st.ode_substeps / (double)st.substeps : 0.0, st.unstable,
-         held[reps / 2], held[reps / 2] / threads, kept, (long)held_trials * reps);
+         held[reps / 2], held[reps / 2] / threads, kept, (long)held_trials * reps, cpu[reps / 2],
+         hcpu[reps / 2]);
   if (baseline)
     printf("baseline=%s steps_per_s=%.0f per_core=%.0f speedup=%.2f robot_in_ode=%.0f%% "
-           "unstable=%ld\n",
+           "unstable=%ld cpu_per_core=%.0f cpu_speedup=%.2f\n",
            baseline_set, med_base, med_base / threads, med / med_base,
            bst.substeps ? 100.0 * (double)bst.ode_substeps / (double)bst.substeps : 0.0,
-           bst.unstable);
+           bst.unstable, bcpu[reps / 2], cpu[reps / 2] / bcpu[reps / 2]);
   free(rate);
   free(base);
   free(per_trial);
   free(held);
+  free(cpu);
+  free(bcpu);
+  free(hcpu);
   st_robot_destroy(robot);
   return 0;
 }

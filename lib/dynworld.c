@@ -156,6 +156,7 @@ void st_dyn_def_from_config(const stConfig *c, stDynDef *d) {
   d->iterations = c->dynamics_iterations;
   d->gravity = c->dynamics_gravity;
   d->friction = c->dynamics_friction;
+  d->table_friction = c->dynamics_table_friction;
   d->erp = c->dynamics_erp;
   d->cfm = c->dynamics_cfm;
   d->contact_erp = c->dynamics_contact_erp;
@@ -193,6 +194,8 @@ static int check_def(const stDynDef *d, double dt, int *nsub, char *err, size_t 
     BAD("dynamics.gravity: %g (expected >= 0)", d->gravity);
   if (!(d->friction >= 0.0 && d->friction < 1e6))
     BAD("dynamics.friction: %g (expected >= 0)", d->friction);
+  if (!(d->table_friction >= 0.0 && d->table_friction < 1e6))
+    BAD("dynamics.table_friction: %g (expected >= 0)", d->table_friction);
   if (!(d->erp >= 0.0 && d->erp <= 1.0)) BAD("dynamics.erp: %g (expected 0..1)", d->erp);
   if (!(d->cfm >= 0.0 && d->cfm <= 1.0)) BAD("dynamics.cfm: %g (expected 0..1)", d->cfm);
   if (!(d->contact_erp >= 0.0 && d->contact_erp <= 1.0))
@@ -621,7 +624,7 @@ static void dyn_destroy(stWorld *w) {
  * ODE's colliders return at most the requested number of points, the first ones they find:
  * for the object's flat base on the table that is one side of the rim, and the object creeps.
  * So up to 16 are asked for and max_contacts of them kept, evenly spread over the list. */
-static int collide(dynInternal *d, dGeomID a, dGeomID b, int make) {
+static int collide(dynInternal *d, dGeomID a, dGeomID b, int make, double mu) {
   if (!a || !b) return 0;
   enum { ASK = 16 };
   const int n = dCollide(a, b, ASK, d->cg, sizeof d->cg[0]);
@@ -632,6 +635,7 @@ static int collide(dynInternal *d, dGeomID a, dGeomID b, int make) {
       dContact c;
       memset(&c, 0, sizeof c);
       c.surface = d->surface;
+      c.surface.mu = mu;
       c.geom = d->cg[i];
       dBodyID b1 = dGeomGetBody(d->cg[i].g1), b2 = dGeomGetBody(d->cg[i].g2);
       if ((!b1 || dBodyIsKinematic(b1)) && (!b2 || dBodyIsKinematic(b2))) continue; /* no effect */
@@ -660,13 +664,14 @@ static void collide_object(stWorld *w, int make, stContacts *c) {
   dReal oa[6];
   object_aabb(d, oa);
   if (d->obj_table && st__aabb_overlap(oa, d->table_aabb)) {
-    int hit = collide(d, d->scene.ball, d->scene.table, make);
-    hit |= collide(d, d->scene.base, d->scene.table, make);
+    const double mu = d->def.table_friction;
+    int hit = collide(d, d->scene.ball, d->scene.table, make, mu);
+    hit |= collide(d, d->scene.base, d->scene.table, make, mu);
     if (hit) c->object_table = 1;
   }
   if (oa[4] <= d->def.floor_z) {
-    collide(d, d->scene.ball, d->floor, make);
-    collide(d, d->scene.base, d->floor, make);
+    collide(d, d->scene.ball, d->floor, make, d->def.table_friction);
+    collide(d, d->scene.base, d->floor, make, d->def.table_friction);
   }
 }
 
@@ -682,13 +687,14 @@ static void collide_all(stWorld *w, int make, stContacts *c) {
     dGeomID gi = d->geoms.g[i];
     dReal a[6];
     dGeomGetAABB(gi, a);
-    if (g->dyn && st__aabb_overlap(a, d->table_aabb) && collide(d, gi, d->scene.table, make)) {
+    if (g->dyn && st__aabb_overlap(a, d->table_aabb) &&
+        collide(d, gi, d->scene.table, make, d->def.friction)) {
       if (g->is_arm) c->arm_table = 1;
       if (g->touch >= 0) c->touch[g->touch] = 1;
     }
     if (st__aabb_overlap(a, oa)) {
-      int hit = collide(d, gi, d->scene.ball, make);
-      hit |= collide(d, gi, d->scene.base, make);
+      int hit = collide(d, gi, d->scene.ball, make, d->def.friction);
+      hit |= collide(d, gi, d->scene.base, make, d->def.friction);
       if (hit) {
         c->robot_object = 1;
         if (g->touch >= 0) c->touch[g->touch] = c->touch_object[g->touch] = 1;

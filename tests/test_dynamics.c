@@ -89,14 +89,14 @@ static void test_create_errors(void) {
   CU_ASSERT_EQUAL(st_world_create_dynamic(r, &g_scene, &def, &w, err, sizeof err), ST_ERR_RANGE);
   ST_ASSERT_CONTAINS(err, "dynamics.friction");
   /* the defaults build one body per hinge (massless and fixed links folded): the 9 torso and
-   * arm DOF, thumb opposition + 3 thumb flexion hinges, 3 each for index, middle and ring (the
-   * little finger is rigid with the ring, iCub_SIM): 22; 5 sub-steps */
+   * arm DOF, thumb opposition + 2 thumb flexion hinges (the distal phalanges welded), 3 for
+   * index and middle, 3 for ring and little (one rigid body per phalanx level): 18; 5 sub-steps */
   st_dyn_def_from_config(&g_cfg, &def);
   CU_ASSERT_EQUAL_FATAL(st_world_create_dynamic(r, &g_scene, &def, &w, err, sizeof err), ST_OK);
   stDynInfo info;
   st_world_dynamic_info(w, &info);
-  CU_ASSERT_EQUAL(info.bodies, 22);
-  CU_ASSERT_EQUAL(info.hinges, 22);
+  CU_ASSERT_EQUAL(info.bodies, 18);
+  CU_ASSERT_EQUAL(info.hinges, 18);
   CU_ASSERT_EQUAL(info.substeps, 5);
   CU_ASSERT_EQUAL(info.rand_interposed, 1); /* Debian's libode calls dRandInt through its PLT */
   CU_ASSERT_EQUAL(w->dynamic, 1);

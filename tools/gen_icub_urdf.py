@@ -6,8 +6,9 @@ import os
 # Hand structure (data/README.md §hand): which phalanges are separate bodies. Environment
 # overrides exist for the measurements recorded there; the defaults generate the shipped URDF.
 FINGER_HINGES = int(os.environ.get("ST_FINGER_HINGES", "3"))      # 3 = iKin (MCP, PIP, DIP); 2 = DIP welded straight
-THUMB_HINGES = int(os.environ.get("ST_THUMB_HINGES", "3"))        # flexing thumb hinges: 3 = iKin; 2 = distal welded
+THUMB_HINGES = int(os.environ.get("ST_THUMB_HINGES", "2"))        # flexing thumb hinges: 3 = iKin; 2 = distal welded
 MERGE_RING_LITTLE = os.environ.get("ST_MERGE_RING_LITTLE", "1") == "1"  # iCub_SIM: one body per phalanx level
+MERGE_INDEX_MIDDLE = os.environ.get("ST_MERGE_INDEX_MIDDLE", "1") == "1"  # likewise index and middle
 # thumb base moved from iKin's, in the palm frame (+x along the fingers, +y towards the thumb), m
 THUMB_SHIFT = [float(v) for v in os.environ.get("ST_THUMB_SHIFT", "-0.035,0").split(",")]
 
@@ -428,15 +429,20 @@ def zero_pose(link):
             return matmul(zero_pose(j["parent"]), j["T"])
     return eye()
 
-if MERGE_RING_LITTLE:
-    # iCub_SIM: ring and little share one rigid body per phalanx level, driven by the ring's
-    # hinges; each little phalanx becomes a fixed child of the ring phalanx at its level
+def merge_finger(host, guest, why):
+    """Each guest phalanx becomes a fixed child of the host phalanx at its level: one rigid body
+    per level, driven by the host's hinges."""
     for s in range(1, 4):
         for j in joints:
-            if j["child"] == "l_little_%d" % s:
-                j.update(type="fixed", parent="l_ring_%d" % s, lim=None, effort=None, mimic=None,
-                         T=matmul(inv(zero_pose("l_ring_%d" % s)), zero_pose("l_little_%d" % s)),
-                         comment="little phalanx %d: rigid with the ring phalanx of its level (iCub_SIM)" % s)
+            if j["child"] == "l_%s_%d" % (guest, s):
+                j.update(type="fixed", parent="l_%s_%d" % (host, s), lim=None, effort=None, mimic=None,
+                         T=matmul(inv(zero_pose("l_%s_%d" % (host, s))), zero_pose("l_%s_%d" % (guest, s))),
+                         comment="%s phalanx %d: rigid with the %s phalanx of its level (%s)" % (guest, s, host, why))
+
+if MERGE_RING_LITTLE:
+    merge_finger("ring", "little", "iCub_SIM")
+if MERGE_INDEX_MIDDLE:
+    merge_finger("index", "middle", "one finger DOF: they always move together")
 
 # ---------------------------------------------------------------- emit
 out = []

@@ -94,7 +94,8 @@ typedef struct stDynDef {
   double substep;            /* s; the control step must be a whole number of sub-steps */
   int iterations;            /* quickstep iterations per sub-step */
   double gravity;            /* m/s^2, downwards */
-  double friction;           /* Coulomb coefficient of every contact */
+  double friction;           /* Coulomb coefficient of the robot's contacts */
+  double table_friction;     /* ... of the object on the table and the floor */
   double erp, cfm;           /* joints (and joint stops) */
   double contact_erp, contact_cfm; /* soft contacts */
   double surface_layer;      /* m of allowed contact penetration */
