@@ -57,11 +57,9 @@ static double box_dist2(const double *c, const double *lo, const double *hi) {
   return d2;
 }
 
-/* world centre of a geom */
-static void geom_centre(const stWorld *w, int gi, double c[3]) {
-  const stModel *m = w->robot->model;
-  const int b = m->geom_body[gi];
-  st__frame_point(w->R[b], w->p[b], m->geom_pos[gi], c);
+/* world centre of a geom on body b */
+static inline void geom_centre(const stWorld *w, int gi, int b, double c[3]) {
+  st__frame_point(w->R[b], w->p[b], w->robot->model->geom_pos[gi], c);
 }
 
 /* world rotation of a geom: body rotation times the geom's local rotation */
@@ -142,11 +140,12 @@ static void contacts_reference(stWorld *w, stContacts *c) {
   const stRobot *r = w->robot;
   kinInternal *k = w->internal_;
   for (int gi = 0; gi < k->geoms.n; gi++) {
+    const int b = r->model->geom_body[gi];
     double ctr[3], Rg[9];
-    geom_centre(w, gi, ctr);
+    geom_centre(w, gi, b, ctr);
     geom_rot(w, gi, Rg);
     place_geom(w, gi, ctr, Rg);
-    const int arm = r->body_is_arm[r->model->geom_body[gi]];
+    const int arm = r->body_is_arm[b];
     geom_touches(w, gi, arm && touches(k->geoms.g[gi], k->scene.table), 1, c);
   }
   c->object_table = object_on_table(k);
@@ -162,7 +161,7 @@ static void contacts_culled(stWorld *w, stContacts *c) {
     const int b = r->model->geom_body[gi];
     const double rad = k->geoms.bound[gi];
     double ctr[3];
-    geom_centre(w, gi, ctr);
+    geom_centre(w, gi, b, ctr);
     int near_table = box_dist2(ctr, s->table_lo, s->table_hi) <= rad * rad;
     double dx = ctr[0] - w->obj[0], dy = ctr[1] - w->obj[1], dz = ctr[2] - w->obj[2];
     double ro = rad + k->obj_bound;
