@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT
- * Dynamic world (thesis §2.1, SPEC §3): the robot, the table and the object as an ODE world.
- * See selftalk/world.h for the contract and docs/PROTOCOL.md ("Dynamic mode") for the
- * physical parameters, their reasons and the measurements behind them.
+ * Dynamic world backend (thesis §2.1, SPEC §3; lib/world_backend.h): the robot, the table and
+ * the object as an ODE world. See selftalk/world.h for the contract and docs/PROTOCOL.md
+ * ("Dynamic mode") for the physical parameters, their reasons and the measurements behind
+ * them. The geometries come from lib/world_geom.c, shared with the kinematic world.
  *
  * Bodies: every link moved by a revolute joint starts an ODE body; links on fixed joints
  * (massless frames, the knuckles, torso_2, l_upper_arm) are folded into the body of their
@@ -31,19 +32,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dynworld.h"
 #include "internal.h"
 #include "ode_util.h"
 #include "selftalk/rng.h"
+#include "world_backend.h"
+#include "world_geom.h"
 
+/* what a robot geometry (geoms.g[i] for model geometry i) touches */
 typedef struct dynGeom {
-  dGeomID g;
   int link;      /* model body the geometry belongs to */
-  int model;     /* model geometry index */
   int dyn;       /* on an ODE body (0: part of the static root) */
   int is_arm;    /* counts for arm_table */
   int touch;     /* touch sensor, -1 for none */
-  double bound;  /* bounding-sphere radius about the geometry origin (meshes) */
 } dynGeom;
 
 typedef struct dynHinge {
@@ -56,6 +56,7 @@ typedef struct dynHinge {
 } dynHinge;
 
 typedef struct dynInternal {
+  stWorldHead head;
   stDynDef def;
   int solver;               /* in use (ST_DYN_*) */
   int nsub;                 /* sub-steps per control step */
@@ -75,11 +76,11 @@ typedef struct dynInternal {
   int nhinge;
   dynHinge *hinge;
   int nkin;                 /* the first nkin hinges are exact servos (dynamics.kinematic_joints) */
-  int ngeom;
-  dynGeom *geom;
-  dTriMeshDataID *meshes;
+  stRobotGeoms geoms;       /* the robot's geometries */
+  dynGeom *geom;            /* (geoms.n) what each of them touches */
   dBodyID ball;
-  dGeomID ball_g, base_g, table, floor;
+  stSceneGeoms scene;       /* the table, and the object's sphere and base on the ball body */
+  dGeomID floor;
   double table_aabb[6];
   int obj_table;            /* object-table collision on */
   int robot_dyn;            /* the robot's bodies take part in ODE's step (else: free motion) */
@@ -96,32 +97,9 @@ typedef struct dynInternal {
   char reason[192];
 } dynInternal;
 
-/* ---- small helpers --------------------------------------------------------------------- */
-
-static void mat_mul(const double *A, const double *B, double *C) { /* C = A B (3x3) */
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++)
-      C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
-}
-
-static void mat_vec(const double *A, const double *x, double *y) {
-  for (int i = 0; i < 3; i++) y[i] = A[3 * i] * x[0] + A[3 * i + 1] * x[1] + A[3 * i + 2] * x[2];
-}
-
-static void to_ode_rot(const double *R, dMatrix3 out) {
-  for (int i = 0; i < 3; i++) {
-    out[4 * i] = R[3 * i];
-    out[4 * i + 1] = R[3 * i + 1];
-    out[4 * i + 2] = R[3 * i + 2];
-    out[4 * i + 3] = 0;
-  }
-}
+static const stWorldBackend dyn_backend;
 
 static int finite3(const dReal *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
-
-static int aabb_overlap(const dReal *a, const dReal *b) {
-  return a[0] <= b[1] && b[0] <= a[1] && a[2] <= b[3] && b[2] <= a[3] && a[4] <= b[5] && b[4] <= a[5];
-}
 
 /* ---- the interposition check ----------------------------------------------------------- */
 
@@ -247,6 +225,8 @@ static int check_def(const stDynDef *d, double dt, int *nsub, char *err, size_t 
 #undef BAD
 }
 
+/* ---- creation ---------------------------------------------------------------------------- */
+
 /* inertia about the centre of mass must be symmetric positive definite */
 static int inertia_ok(const double *I) {
   for (int i = 0; i < 9; i++)
@@ -257,49 +237,19 @@ static int inertia_ok(const double *I) {
   return m1 > 0 && m2 > 0 && m3 > 0;
 }
 
-static dGeomID make_geom(const stModel *m, int i, dTriMeshDataID *mesh) {
-  const double *s = m->geom_size[i];
-  *mesh = NULL;
-  switch (m->geom_type[i]) {
-    case ST_GEOM_SPHERE:
-      return s[0] > 0 && isfinite(s[0]) ? dCreateSphere(0, s[0]) : NULL;
-    case ST_GEOM_BOX:
-      return s[0] > 0 && s[1] > 0 && s[2] > 0 && finite3(s) ? dCreateBox(0, s[0], s[1], s[2]) : NULL;
-    case ST_GEOM_CYLINDER:
-      return s[0] > 0 && s[1] > 0 && isfinite(s[0]) && isfinite(s[1]) ? dCreateCylinder(0, s[0], s[1])
-                                                                       : NULL;
-    case ST_GEOM_MESH: {
-      if (m->geom_nvert[i] < 3 || m->geom_ntri[i] < 1) return NULL;
-      dTriMeshDataID d = dGeomTriMeshDataCreate();
-      dGeomTriMeshDataBuildDouble(d, m->mesh_vert[m->geom_vert0[i]], sizeof(double[3]),
-                                  m->geom_nvert[i], m->mesh_tri[m->geom_tri0[i]],
-                                  3 * m->geom_ntri[i], sizeof(int[3]));
-      *mesh = d;
-      return dCreateTriMesh(0, d, NULL, NULL, NULL);
-    }
-    default: return NULL;
-  }
-}
-
-/* ---- creation ---------------------------------------------------------------------------- */
-
-static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
-  const stRobot *r = w->robot;
-  const stModel *m = r->model;
-  const stScene *sc = w->scene;
-  const int nb = m->nbody;
+/* links into bodies: a revolute joint starts one, a fixed joint folds its child into its
+ * parent's (link_R, link_p: the child's frame in the first link's) */
+static void group_links(dynInternal *d, const stModel *m) {
   static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-
-  /* bodies: a revolute joint starts one, a fixed joint folds its child into the parent's */
   d->link_group[0] = -1;
   memcpy(d->link_R[0], I3, sizeof I3);
-  for (int b = 1; b < nb; b++) {
+  for (int b = 1; b < m->nbody; b++) {
     const int pb = m->body_parent[b];
     if (m->jnt_type[b] == ST_JOINT_FIXED) {
       d->link_group[b] = d->link_group[pb];
-      mat_mul(d->link_R[pb], m->jnt_rot[b], d->link_R[b]);
+      st__mat3_mul(d->link_R[pb], m->jnt_rot[b], d->link_R[b]);
       double o[3];
-      mat_vec(d->link_R[pb], m->jnt_pos[b], o);
+      st__mat3_vec(d->link_R[pb], m->jnt_pos[b], o);
       for (int i = 0; i < 3; i++) d->link_p[b][i] = d->link_p[pb][i] + o[i];
     } else {
       d->glink[d->ngroup] = b;
@@ -307,146 +257,178 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
       memcpy(d->link_R[b], I3, sizeof I3);
     }
   }
+}
 
-  /* world poses at zero joint angles: hinges measure their angle from this pose */
-  double (*R)[9] = w->R, (*p)[3] = w->p;
-  for (int b = 0; b < nb; b++) d->angle[b] = 0.0;
-  st_robot_fk_angles(r, d->angle, R, p);
+/* world poses (w->R, w->p) at zero joint angles: hinges measure their angle from this pose */
+static void zero_pose(stWorld *w, dynInternal *d) {
+  for (int b = 0; b < w->robot->model->nbody; b++) d->angle[b] = 0.0;
+  st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
+}
 
-  dWorldID wd = d->world;
+/* mass M of body g, the sum of its links', and their common centre of mass C in the first
+ * link's frame */
+static stStatus body_mass(const dynInternal *d, const stModel *m, int g, double *M_out,
+                          double C[3], char *err, size_t errsz) {
+  double M = 0;
+  C[0] = C[1] = C[2] = 0;
+  for (int b = 0; b < m->nbody; b++) {
+    if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
+    double c[3];
+    st__mat3_vec(d->link_R[b], m->body_com[b], c);
+    for (int i = 0; i < 3; i++) C[i] += m->body_mass[b] * (c[i] + d->link_p[b][i]);
+    M += m->body_mass[b];
+  }
+  const int gl = d->glink[g];
+  if (!(M > 0 && isfinite(M))) {
+    st__errf(err, errsz, "link '%s' (joint '%s'): no mass on a moving link and its fixed "
+             "children (expected mass > 0)", m->body_name[gl], m->jnt_name[gl]);
+    return ST_ERR_MODEL;
+  }
+  for (int i = 0; i < 3; i++) C[i] /= M;
+  *M_out = M;
+  return ST_OK;
+}
+
+/* inertia I of body g about its centre of mass C, in the first link's axes: its links'
+ * inertias rotated and moved there (parallel axes) */
+static stStatus body_inertia(const dynInternal *d, const stModel *m, int g, const double C[3],
+                             double I[9], char *err, size_t errsz) {
+  for (int i = 0; i < 9; i++) I[i] = 0;
+  for (int b = 0; b < m->nbody; b++) {
+    if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
+    const double mb = m->body_mass[b];
+    double c[3], T[9], RI[9], Rt[9];
+    st__mat3_vec(d->link_R[b], m->body_com[b], c);
+    for (int i = 0; i < 3; i++) c[i] += d->link_p[b][i] - C[i];
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) Rt[3 * i + j] = d->link_R[b][3 * j + i];
+    st__mat3_mul(d->link_R[b], m->body_inertia[b], RI);
+    st__mat3_mul(RI, Rt, T); /* R I R^T */
+    const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        I[3 * i + j] += T[3 * i + j] + mb * ((i == j ? c2 : 0.0) - c[i] * c[j]);
+  }
+  if (!inertia_ok(I)) {
+    st__errf(err, errsz, "link '%s': inertia of the moving body is not positive definite "
+             "(expected a physical inertia tensor)", m->body_name[d->glink[g]]);
+    return ST_ERR_MODEL;
+  }
+  return ST_OK;
+}
+
+static void place_body(stWorld *w, int g);
+
+/* an ODE body per group of links, with its mass, where the zero pose puts it */
+static stStatus create_bodies(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   for (int g = 0; g < d->ngroup; g++) {
-    /* mass: sum of the links about their common centre of mass, in the first link's axes */
-    double M = 0, C[3] = {0, 0, 0};
-    for (int b = 0; b < nb; b++) {
-      if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
-      double c[3];
-      mat_vec(d->link_R[b], m->body_com[b], c);
-      for (int i = 0; i < 3; i++) C[i] += m->body_mass[b] * (c[i] + d->link_p[b][i]);
-      M += m->body_mass[b];
-    }
-    const int gl = d->glink[g];
-    if (!(M > 0 && isfinite(M))) {
-      st__errf(err, errsz, "link '%s' (joint '%s'): no mass on a moving link and its fixed "
-               "children (expected mass > 0)", m->body_name[gl], m->jnt_name[gl]);
-      return ST_ERR_MODEL;
-    }
-    for (int i = 0; i < 3; i++) C[i] /= M;
-    double I[9] = {0};
-    for (int b = 0; b < nb; b++) {
-      if (d->link_group[b] != g || !(m->body_mass[b] > 0)) continue;
-      const double mb = m->body_mass[b];
-      double c[3], T[9], RI[9], Rt[9];
-      mat_vec(d->link_R[b], m->body_com[b], c);
-      for (int i = 0; i < 3; i++) c[i] += d->link_p[b][i] - C[i];
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) Rt[3 * i + j] = d->link_R[b][3 * j + i];
-      mat_mul(d->link_R[b], m->body_inertia[b], RI);
-      mat_mul(RI, Rt, T); /* R I R^T */
-      const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-          I[3 * i + j] += T[3 * i + j] + mb * ((i == j ? c2 : 0.0) - c[i] * c[j]);
-    }
-    if (!inertia_ok(I)) {
-      st__errf(err, errsz, "link '%s': inertia of the moving body is not positive definite "
-               "(expected a physical inertia tensor)", m->body_name[gl]);
-      return ST_ERR_MODEL;
-    }
+    double M, C[3], I[9];
+    stStatus st = body_mass(d, w->robot->model, g, &M, C, err, errsz);
+    if (!st) st = body_inertia(d, w->robot->model, g, C, I, err, errsz);
+    if (st) return st;
     memcpy(d->gcom[g], C, sizeof C);
-    dBodyID bd = dBodyCreate(wd);
-    d->gbody[g] = bd;
+    d->gbody[g] = dBodyCreate(d->world);
     dMass ms;
     dMassSetZero(&ms);
     dMassSetParameters(&ms, M, 0, 0, 0, I[0], I[4], I[8], I[1], I[2], I[5]);
-    dBodySetMass(bd, &ms);
-    double c[3];
-    mat_vec(R[gl], C, c);
-    dBodySetPosition(bd, p[gl][0] + c[0], p[gl][1] + c[1], p[gl][2] + c[2]);
-    dMatrix3 Ro;
-    to_ode_rot(R[gl], Ro);
-    dBodySetRotation(bd, Ro);
+    dBodySetMass(d->gbody[g], &ms);
+    place_body(w, g);
   }
+  return ST_OK;
+}
 
-  /* hinges: anchored at the joint origin, axis from the model, stops = the qhat range */
-  for (int b = 1; b < nb; b++) {
+/* the hinge of link b: anchored at the joint origin, axis from the model, stops stop_margin
+ * outside the qhat range, a velocity motor of torque up to the URDF effort times effort_scale */
+static stStatus create_hinge(stWorld *w, dynInternal *d, int b, char *err, size_t errsz) {
+  const stRobot *r = w->robot;
+  const stModel *m = r->model;
+  const double lo = r->body_range[b][0], hi = r->body_range[b][1];
+  const double effort = m->jnt_effort[b] * d->def.effort_scale;
+  const double *a = m->jnt_axis[b];
+  const double an = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (!(isfinite(lo) && isfinite(hi) && lo < hi && hi - lo < 2 * ST_PI) ||
+      !(effort >= 0 && isfinite(effort)) || !(an > 1e-9 && isfinite(an))) {
+    st__errf(err, errsz, "joint '%s': range %g..%g rad, effort %g N m, axis norm %g (expected "
+             "a finite range narrower than 360 degrees, a finite effort >= 0 and an axis)",
+             m->jnt_name[b], lo, hi, effort, an);
+    return ST_ERR_MODEL;
+  }
+  const int pg = d->link_group[m->body_parent[b]];
+  dJointID j = dJointCreateHinge(d->world, 0);
+  dJointAttach(j, d->gbody[d->link_group[b]], pg >= 0 ? d->gbody[pg] : 0);
+  dJointSetHingeAnchor(j, w->p[b][0], w->p[b][1], w->p[b][2]);
+  double ax[3];
+  st__mat3_vec(w->R[b], a, ax);
+  dJointSetHingeAxis(j, ax[0], ax[1], ax[2]);
+  dJointSetHingeParam(j, dParamLoStop, lo - d->def.stop_margin);
+  dJointSetHingeParam(j, dParamHiStop, hi + d->def.stop_margin);
+  dJointSetHingeParam(j, dParamFudgeFactor, d->def.fudge_factor);
+  dJointSetHingeParam(j, dParamStopERP, d->def.erp);
+  dJointSetHingeParam(j, dParamStopCFM, d->def.cfm);
+  dJointSetHingeParam(j, dParamCFM, d->def.cfm);
+  dJointSetHingeParam(j, dParamVel, 0.0);
+  dJointSetHingeParam(j, dParamFMax, effort);
+  dynHinge *hg = &d->hinge[d->nhinge++];
+  hg->j = j;
+  hg->link = b;
+  hg->dof = r->body_dof[b];
+  hg->lo = lo;
+  hg->hi = hi;
+  hg->lo_set = lo - d->def.stop_margin;
+  hg->hi_set = hi + d->def.stop_margin;
+  return ST_OK;
+}
+
+static stStatus create_hinges(stWorld *w, dynInternal *d, char *err, size_t errsz) {
+  const stModel *m = w->robot->model;
+  for (int b = 1; b < m->nbody; b++) {
     if (m->jnt_type[b] != ST_JOINT_REVOLUTE) continue;
-    const double lo = r->body_range[b][0], hi = r->body_range[b][1];
-    const double effort = m->jnt_effort[b] * d->def.effort_scale;
-    const double *a = m->jnt_axis[b];
-    const double an = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    if (!(isfinite(lo) && isfinite(hi) && lo < hi && hi - lo < 2 * ST_PI) ||
-        !(effort >= 0 && isfinite(effort)) || !(an > 1e-9 && isfinite(an))) {
-      st__errf(err, errsz, "joint '%s': range %g..%g rad, effort %g N m, axis norm %g (expected "
-               "a finite range narrower than 360 degrees, a finite effort >= 0 and an axis)",
-               m->jnt_name[b], lo, hi, effort, an);
-      return ST_ERR_MODEL;
-    }
-    const int pg = d->link_group[m->body_parent[b]];
-    dJointID j = dJointCreateHinge(wd, 0);
-    dJointAttach(j, d->gbody[d->link_group[b]], pg >= 0 ? d->gbody[pg] : 0);
-    dJointSetHingeAnchor(j, p[b][0], p[b][1], p[b][2]);
-    double ax[3];
-    mat_vec(R[b], a, ax);
-    dJointSetHingeAxis(j, ax[0], ax[1], ax[2]);
-    dJointSetHingeParam(j, dParamLoStop, lo - d->def.stop_margin);
-    dJointSetHingeParam(j, dParamHiStop, hi + d->def.stop_margin);
-    dJointSetHingeParam(j, dParamFudgeFactor, d->def.fudge_factor);
-    dJointSetHingeParam(j, dParamStopERP, d->def.erp);
-    dJointSetHingeParam(j, dParamStopCFM, d->def.cfm);
-    dJointSetHingeParam(j, dParamCFM, d->def.cfm);
-    dJointSetHingeParam(j, dParamVel, 0.0);
-    dJointSetHingeParam(j, dParamFMax, effort);
-    dynHinge *hg = &d->hinge[d->nhinge++];
-    hg->j = j;
-    hg->link = b;
-    hg->dof = r->body_dof[b];
-    hg->lo = lo;
-    hg->hi = hi;
-    hg->lo_set = lo - d->def.stop_margin;
-    hg->hi_set = hi + d->def.stop_margin;
+    stStatus st = create_hinge(w, d, b, err, errsz);
+    if (st) return st;
   }
+  return ST_OK;
+}
 
-  /* geometries, attached to their body with the offset of their link and of the COM */
-  for (int i = 0; i < m->ngeom; i++) {
-    const int l = m->geom_body[i], g = d->link_group[l];
-    dGeomID geom = make_geom(m, i, &d->meshes[i]);
-    if (!geom) {
-      st__errf(err, errsz, "geometry %d of link '%s': unsupported type or bad size", i,
-               m->body_name[l]);
-      return ST_ERR_MODEL;
-    }
-    double gp[3], gR[9];
-    mat_vec(d->link_R[l], m->geom_pos[i], gp);
-    for (int k = 0; k < 3; k++) gp[k] += d->link_p[l][k];
-    mat_mul(d->link_R[l], m->geom_rot[i], gR);
-    dMatrix3 Ro;
-    to_ode_rot(gR, Ro);
-    if (g >= 0) {
-      dGeomSetBody(geom, d->gbody[g]);
-      dGeomSetOffsetRotation(geom, Ro);
-      dGeomSetOffsetPosition(geom, gp[0] - d->gcom[g][0], gp[1] - d->gcom[g][1],
-                             gp[2] - d->gcom[g][2]);
-    } else {
-      dGeomSetRotation(geom, Ro); /* the root link is the world frame */
-      dGeomSetPosition(geom, gp[0], gp[1], gp[2]);
-    }
-    dynGeom *dg = &d->geom[d->ngeom++];
-    dg->g = geom;
-    dg->link = l;
-    dg->model = i;
-    dg->bound = 0;
-    if (m->geom_type[i] == ST_GEOM_MESH)
-      for (int v = 0; v < m->geom_nvert[i]; v++) {
-        const double *x = m->mesh_vert[m->geom_vert0[i] + v];
-        const double r = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-        if (r > dg->bound) dg->bound = r;
-      }
-    dg->dyn = g >= 0;
-    dg->is_arm = r->body_is_arm[l];
-    dg->touch = r->body_touch[l];
+/* geometry i on its body, with the offset of its link and of the body's centre of mass (on
+ * the static root: placed in the world, whose frame the root's is) */
+static void attach_geom(stWorld *w, dynInternal *d, int i) {
+  const stRobot *r = w->robot;
+  const stModel *m = r->model;
+  const int l = m->geom_body[i], g = d->link_group[l];
+  dGeomID geom = d->geoms.g[i];
+  double gp[3], gR[9];
+  st__mat3_vec(d->link_R[l], m->geom_pos[i], gp);
+  for (int k = 0; k < 3; k++) gp[k] += d->link_p[l][k];
+  st__mat3_mul(d->link_R[l], m->geom_rot[i], gR);
+  dMatrix3 Ro;
+  st__mat3_to_ode(gR, Ro);
+  if (g >= 0) {
+    dGeomSetBody(geom, d->gbody[g]);
+    dGeomSetOffsetRotation(geom, Ro);
+    dGeomSetOffsetPosition(geom, gp[0] - d->gcom[g][0], gp[1] - d->gcom[g][1],
+                           gp[2] - d->gcom[g][2]);
+  } else {
+    dGeomSetRotation(geom, Ro);
+    dGeomSetPosition(geom, gp[0], gp[1], gp[2]);
   }
+  dynGeom *dg = &d->geom[i];
+  dg->link = l;
+  dg->dyn = g >= 0;
+  dg->is_arm = r->body_is_arm[l];
+  dg->touch = r->body_touch[l];
+}
 
-  /* scene: table, floor, and the object (sphere + flattened base, one body) */
+/* the robot's geometries (lib/world_geom.c), each attached */
+static stStatus create_geoms(stWorld *w, dynInternal *d, char *err, size_t errsz) {
+  stStatus st = st__robot_geoms_create(w->robot->model, 1, &d->geoms, err, errsz);
+  if (st) return st;
+  for (int i = 0; i < d->geoms.n; i++) attach_geom(w, d, i);
+  return ST_OK;
+}
+
+/* scene: table, floor, and the object (sphere + flattened base, one body) */
+static stStatus create_scene(stWorld *w, dynInternal *d, char *err, size_t errsz) {
+  const stScene *sc = w->scene;
   if (!(sc->obj_radius > 0 && sc->obj_mass > 0 && sc->base_radius >= 0 && sc->base_height >= 0 &&
         sc->base_height <= 2 * sc->obj_radius)) {
     st__errf(err, errsz, "scene: object radius %g, mass %g, base %g x %g (expected positive "
@@ -459,20 +441,17 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
     st__errf(err, errsz, "scene: empty table box (expected min < max on every axis)");
     return ST_ERR_RANGE;
   }
-  d->table = dCreateBox(0, hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
-  dGeomSetPosition(d->table, 0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
-  dGeomGetAABB(d->table, d->table_aabb);
+  st__scene_geoms_create(sc, &d->scene);
+  dGeomGetAABB(d->scene.table, d->table_aabb);
   d->floor = dCreatePlane(0, 0, 0, 1, d->def.floor_z);
-  d->ball = dBodyCreate(wd);
+  d->ball = dBodyCreate(d->world);
   dMass ms;
   dMassSetSphereTotal(&ms, sc->obj_mass, sc->obj_radius);
   dBodySetMass(d->ball, &ms);
-  d->ball_g = dCreateSphere(0, sc->obj_radius);
-  dGeomSetBody(d->ball_g, d->ball);
-  if (sc->base_radius > 0 && sc->base_height > 0) {
-    d->base_g = dCreateCylinder(0, sc->base_radius, sc->base_height);
-    dGeomSetBody(d->base_g, d->ball);
-    dGeomSetOffsetPosition(d->base_g, 0, 0, -sc->obj_radius + 0.5 * sc->base_height);
+  dGeomSetBody(d->scene.ball, d->ball);
+  if (d->scene.base) {
+    dGeomSetBody(d->scene.base, d->ball);
+    dGeomSetOffsetPosition(d->scene.base, 0, 0, -sc->obj_radius + 0.5 * sc->base_height);
   }
   return ST_OK;
 }
@@ -489,6 +468,17 @@ static int name_listed(const char *list, const char *name) {
     s += len;
   }
   return 0;
+}
+
+/* how many comma-separated names list has */
+static int names_count(const char *list) {
+  int n = 0;
+  for (const char *s = list; *s;) {
+    while (*s == ',' || *s == ' ') s++;
+    if (*s) n++;
+    s += strcspn(s, ",");
+  }
+  return n;
 }
 
 /* dynamics.kinematic_joints: those hinges become exact servos (joint disabled, body kinematic).
@@ -516,12 +506,7 @@ static stStatus mark_kinematic(dynInternal *d, const stModel *m, char *err, size
     dBodySetKinematic(d->gbody[i]);
     found++;
   }
-  int listed = 0;
-  for (const char *s = d->def.kinematic_joints; *s;) {
-    while (*s == ',' || *s == ' ') s++;
-    if (*s) listed++;
-    s += strcspn(s, ",");
-  }
+  const int listed = names_count(d->def.kinematic_joints);
   if (found != listed) {
     st__errf(err, errsz, "dynamics.kinematic_joints: '%s' names %d joints, %d of them hinges of "
              "the model (expected names of revolute joints, each once)", d->def.kinematic_joints,
@@ -532,37 +517,21 @@ static stStatus mark_kinematic(dynInternal *d, const stModel *m, char *err, size
   return ST_OK;
 }
 
-stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, const stDynDef *def,
-                                 stWorld **out, char *err, size_t errsz) {
-  *out = NULL;
-  int nsub = 0;
-  if (check_def(def, robot->dt, &nsub, err, errsz)) return ST_ERR_RANGE;
-  st__ode_init();
-  pthread_once(&g_rand_once, rand_check);
-  const stModel *m = robot->model;
+/* the whole ODE world, phase by phase */
+static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
+  group_links(d, w->robot->model);
+  zero_pose(w, d);
+  stStatus st = create_bodies(w, d, err, errsz);
+  if (!st) st = create_hinges(w, d, err, errsz);
+  if (!st) st = create_geoms(w, d, err, errsz);
+  if (!st) st = create_scene(w, d, err, errsz);
+  if (!st) st = mark_kinematic(d, w->robot->model, err, errsz);
+  return st;
+}
+
+/* the per-body and per-geometry arrays; 0 when out of memory */
+static int alloc_arrays(dynInternal *d, const stModel *m) {
   const size_t nb = (size_t)m->nbody;
-  stWorld *w = calloc(1, sizeof *w);
-  dynInternal *d = calloc(1, sizeof *d);
-  if (!w || !d) {
-    free(w);
-    free(d);
-    st__errf(err, errsz, "dynamic world: out of memory");
-    return ST_ERR_NOMEM;
-  }
-  w->robot = robot;
-  w->scene = scene;
-  w->dynamic = 1;
-  w->internal_ = d;
-  d->def = *def;
-  d->nsub = nsub;
-  d->h = robot->dt / nsub;
-  d->solver = def->solver;
-  if (def->solver == ST_DYN_QUICKSTEP && !g_rand_interposed) {
-    d->solver = ST_DYN_STEP; /* quickstep would share ODE's process-wide generator */
-    pthread_once(&g_warn_once, rand_warn);
-  }
-  w->R = calloc(nb, sizeof *w->R);
-  w->p = calloc(nb, sizeof *w->p);
   d->gbody = calloc(nb, sizeof *d->gbody);
   d->glink = calloc(nb, sizeof *d->glink);
   d->gcom = calloc(nb, sizeof *d->gcom);
@@ -574,20 +543,17 @@ stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, con
   d->vel = calloc(nb, sizeof *d->vel);
   d->saved = calloc(nb + 1, sizeof *d->saved);
   d->geom = calloc((size_t)m->ngeom + 1, sizeof *d->geom);
-  d->meshes = calloc((size_t)m->ngeom + 1, sizeof *d->meshes);
-  if (!w->R || !w->p || !d->gbody || !d->glink || !d->gcom || !d->link_group || !d->link_R ||
-      !d->link_p || !d->hinge || !d->angle || !d->vel || !d->saved || !d->geom || !d->meshes) {
-    st_world_destroy(w);
-    st__errf(err, errsz, "dynamic world: out of memory");
-    return ST_ERR_NOMEM;
-  }
+  return d->gbody && d->glink && d->gcom && d->link_group && d->link_R && d->link_p && d->hinge &&
+         d->angle && d->vel && d->saved && d->geom;
+}
+
+/* the ODE world with its own threading implementation, its contact group and the parameters of
+ * the [dynamics] keys; 0 when out of memory */
+static int create_ode_world(dynInternal *d) {
+  const stDynDef *def = &d->def;
   d->world = dWorldCreate();
   d->threading = dThreadingAllocateSelfThreadedImplementation();
-  if (!d->threading) {
-    st_world_destroy(w);
-    st__errf(err, errsz, "dynamic world: out of memory");
-    return ST_ERR_NOMEM;
-  }
+  if (!d->threading) return 0;
   dWorldSetStepThreadingImplementation(d->world, dThreadingImplementationGetFunctions(d->threading),
                                        d->threading);
   d->cgroup = dJointGroupCreate(0);
@@ -601,46 +567,55 @@ stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, con
   d->surface.mu = def->friction;
   d->surface.soft_erp = def->contact_erp;
   d->surface.soft_cfm = def->contact_cfm;
-  stStatus st = build(w, d, err, errsz);
-  if (!st) st = mark_kinematic(d, m, err, errsz);
-  if (st) {
-    st_world_destroy(w);
-    return st;
+  return 1;
+}
+
+stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz) {
+  int nsub = 0;
+  if (check_def(def, w->robot->dt, &nsub, err, errsz)) return ST_ERR_RANGE;
+  st__ode_init();
+  pthread_once(&g_rand_once, rand_check);
+  dynInternal *d = calloc(1, sizeof *d);
+  if (!d) return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
+  d->head.backend = &dyn_backend;
+  w->internal_ = d;
+  d->def = *def;
+  d->nsub = nsub;
+  d->h = w->robot->dt / nsub;
+  d->solver = def->solver;
+  if (def->solver == ST_DYN_QUICKSTEP && !g_rand_interposed) {
+    d->solver = ST_DYN_STEP; /* quickstep would share ODE's process-wide generator */
+    pthread_once(&g_warn_once, rand_warn);
   }
+  if (!alloc_arrays(d, w->robot->model) || !create_ode_world(d))
+    return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
+  stStatus st = build(w, d, err, errsz);
+  if (st) return st;
   d->obj_table = 1;
-  *out = w;
   return ST_OK;
 }
 
-void st__dyn_destroy(stWorld *w) {
+static void dyn_destroy(stWorld *w) {
   dynInternal *d = w->internal_;
-  if (d) {
-    if (d->geom)
-      for (int i = 0; i < d->ngeom; i++) dGeomDestroy(d->geom[i].g);
-    if (d->meshes)
-      for (int i = 0; i < w->robot->model->ngeom; i++)
-        if (d->meshes[i]) dGeomTriMeshDataDestroy(d->meshes[i]);
-    if (d->ball_g) dGeomDestroy(d->ball_g);
-    if (d->base_g) dGeomDestroy(d->base_g);
-    if (d->table) dGeomDestroy(d->table);
-    if (d->floor) dGeomDestroy(d->floor);
-    if (d->cgroup) dJointGroupDestroy(d->cgroup);
-    if (d->world) dWorldDestroy(d->world); /* its bodies and hinges too */
-    if (d->threading) dThreadingFreeImplementation(d->threading);
-    free(d->gbody);
-    free(d->glink);
-    free(d->gcom);
-    free(d->link_group);
-    free(d->link_R);
-    free(d->link_p);
-    free(d->hinge);
-    free(d->angle);
-    free(d->vel);
-    free(d->saved);
-    free(d->geom);
-    free(d->meshes);
-    free(d);
-  }
+  st__robot_geoms_destroy(w->robot->model, &d->geoms);
+  st__scene_geoms_destroy(&d->scene);
+  if (d->floor) dGeomDestroy(d->floor);
+  if (d->cgroup) dJointGroupDestroy(d->cgroup);
+  if (d->world) dWorldDestroy(d->world); /* its bodies and hinges too */
+  if (d->threading) dThreadingFreeImplementation(d->threading);
+  free(d->gbody);
+  free(d->glink);
+  free(d->gcom);
+  free(d->link_group);
+  free(d->link_R);
+  free(d->link_p);
+  free(d->hinge);
+  free(d->angle);
+  free(d->vel);
+  free(d->saved);
+  free(d->geom);
+  free(d);
+  w->internal_ = NULL;
 }
 
 /* ---- contacts ---------------------------------------------------------------------------- */
@@ -673,9 +648,9 @@ static int collide(dynInternal *d, dGeomID a, dGeomID b, int make, double mu) {
 /* world AABB of the object (sphere and base) */
 static void object_aabb(const dynInternal *d, dReal oa[6]) {
   dReal t[6];
-  dGeomGetAABB(d->ball_g, oa);
-  if (d->base_g) {
-    dGeomGetAABB(d->base_g, t);
+  dGeomGetAABB(d->scene.ball, oa);
+  if (d->scene.base) {
+    dGeomGetAABB(d->scene.base, t);
     for (int i = 0; i < 3; i++) {
       if (t[2 * i] < oa[2 * i]) oa[2 * i] = t[2 * i];
       if (t[2 * i + 1] > oa[2 * i + 1]) oa[2 * i + 1] = t[2 * i + 1];
@@ -688,15 +663,15 @@ static void collide_object(stWorld *w, int make, stContacts *c) {
   dynInternal *d = w->internal_;
   dReal oa[6];
   object_aabb(d, oa);
-  if (d->obj_table && aabb_overlap(oa, d->table_aabb)) {
+  if (d->obj_table && st__aabb_overlap(oa, d->table_aabb)) {
     const double mu = d->def.table_friction;
-    int hit = collide(d, d->ball_g, d->table, make, mu);
-    hit |= collide(d, d->base_g, d->table, make, mu);
+    int hit = collide(d, d->scene.ball, d->scene.table, make, mu);
+    hit |= collide(d, d->scene.base, d->scene.table, make, mu);
     if (hit) c->object_table = 1;
   }
   if (oa[4] <= d->def.floor_z) {
-    collide(d, d->ball_g, d->floor, make, d->def.table_friction);
-    collide(d, d->base_g, d->floor, make, d->def.table_friction);
+    collide(d, d->scene.ball, d->floor, make, d->def.table_friction);
+    collide(d, d->scene.base, d->floor, make, d->def.table_friction);
   }
 }
 
@@ -707,17 +682,19 @@ static void collide_all(stWorld *w, int make, stContacts *c) {
   dynInternal *d = w->internal_;
   dReal oa[6];
   object_aabb(d, oa);
-  for (int i = 0; i < d->ngeom; i++) {
+  for (int i = 0; i < d->geoms.n; i++) {
     const dynGeom *g = &d->geom[i];
+    dGeomID gi = d->geoms.g[i];
     dReal a[6];
-    dGeomGetAABB(g->g, a);
-    if (g->dyn && aabb_overlap(a, d->table_aabb) && collide(d, g->g, d->table, make, d->def.friction)) {
+    dGeomGetAABB(gi, a);
+    if (g->dyn && st__aabb_overlap(a, d->table_aabb) &&
+        collide(d, gi, d->scene.table, make, d->def.friction)) {
       if (g->is_arm) c->arm_table = 1;
       if (g->touch >= 0) c->touch[g->touch] = 1;
     }
-    if (aabb_overlap(a, oa)) {
-      int hit = collide(d, g->g, d->ball_g, make, d->def.friction);
-      hit |= collide(d, g->g, d->base_g, make, d->def.friction);
+    if (st__aabb_overlap(a, oa)) {
+      int hit = collide(d, gi, d->scene.ball, make, d->def.friction);
+      hit |= collide(d, gi, d->scene.base, make, d->def.friction);
       if (hit) {
         c->robot_object = 1;
         if (g->touch >= 0) c->touch[g->touch] = c->touch_object[g->touch] = 1;
@@ -751,36 +728,22 @@ static int robot_near(const stWorld *w, double margin) {
     oa[2 * k] -= grow;
     oa[2 * k + 1] += grow;
   }
-  for (int i = 0; i < d->ngeom; i++) {
+  for (int i = 0; i < d->geoms.n; i++) {
     const dynGeom *g = &d->geom[i];
     if (!g->dyn) continue; /* the static root does not move */
-    const int gi = g->model, l = g->link;
-    const double *s = m->geom_size[gi], *Rl = w->R[l];
+    const int l = g->link;
+    const double *Rl = w->R[l];
     double Rg[9], c[3], half[3];
-    mat_mul(Rl, m->geom_rot[gi], Rg);
-    mat_vec(Rl, m->geom_pos[gi], c);
+    st__mat3_mul(Rl, m->geom_rot[i], Rg);
+    st__mat3_vec(Rl, m->geom_pos[i], c);
     for (int k = 0; k < 3; k++) c[k] += w->p[l][k];
-    switch (m->geom_type[gi]) {
-      case ST_GEOM_SPHERE: half[0] = half[1] = half[2] = s[0]; break;
-      case ST_GEOM_BOX:
-        for (int k = 0; k < 3; k++)
-          half[k] = 0.5 * (fabs(Rg[3 * k]) * s[0] + fabs(Rg[3 * k + 1]) * s[1] +
-                           fabs(Rg[3 * k + 2]) * s[2]);
-        break;
-      case ST_GEOM_CYLINDER:
-        for (int k = 0; k < 3; k++) {
-          const double u = Rg[3 * k + 2], r2 = 1.0 - u * u;
-          half[k] = 0.5 * s[1] * fabs(u) + s[0] * sqrt(r2 > 0 ? r2 : 0);
-        }
-        break;
-      default: half[0] = half[1] = half[2] = g->bound; break;
-    }
+    if (!st__geom_half_aabb(m, i, Rg, half)) half[0] = half[1] = half[2] = d->geoms.bound[i];
     dReal a[6];
     for (int k = 0; k < 3; k++) {
       a[2 * k] = c[k] - half[k] - margin;
       a[2 * k + 1] = c[k] + half[k] + margin;
     }
-    if (aabb_overlap(a, d->table_aabb) || aabb_overlap(a, oa)) return 1;
+    if (st__aabb_overlap(a, d->table_aabb) || st__aabb_overlap(a, oa)) return 1;
   }
   return 0;
 }
@@ -834,20 +797,24 @@ static int bodies_ok(stWorld *w) {
   return body_ok(w, d->ball, "object");
 }
 
+/* body g where forward kinematics (w->R, w->p) puts its first link */
+static void place_body(stWorld *w, int g) {
+  dynInternal *d = w->internal_;
+  const int gl = d->glink[g];
+  double c[3];
+  st__mat3_vec(w->R[gl], d->gcom[g], c);
+  dBodyID b = d->gbody[g];
+  dBodySetPosition(b, w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
+  dMatrix3 Ro;
+  st__mat3_to_ode(w->R[gl], Ro);
+  dBodySetRotation(b, Ro);
+}
+
 /* places every robot body where forward kinematics of d->angle puts it (FK into w->R / w->p) */
 static void place_bodies(stWorld *w) {
   dynInternal *d = w->internal_;
   st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
-  for (int g = 0; g < d->ngroup; g++) {
-    const int gl = d->glink[g];
-    double c[3];
-    mat_vec(w->R[gl], d->gcom[g], c);
-    dBodyID b = d->gbody[g];
-    dBodySetPosition(b, w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
-    dMatrix3 Ro;
-    to_ode_rot(w->R[gl], Ro);
-    dBodySetRotation(b, Ro);
-  }
+  for (int g = 0; g < d->ngroup; g++) place_body(w, g);
 }
 
 /* sets every robot body's velocity (only_kin: every kinematic body's) to what the joint
@@ -892,17 +859,10 @@ static void prescribe_velocities(stWorld *w, int only_kin) {
 static void place_kinematic(stWorld *w) {
   dynInternal *d = w->internal_;
   st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
-  for (int g = 0; g < d->ngroup && d->hinge[g].kin; g++) {
-    const int gl = d->glink[g];
-    double c[3];
-    mat_vec(w->R[gl], d->gcom[g], c);
-    dBodySetPosition(d->gbody[g], w->p[gl][0] + c[0], w->p[gl][1] + c[1], w->p[gl][2] + c[2]);
-    dMatrix3 Ro;
-    to_ode_rot(w->R[gl], Ro);
-    dBodySetRotation(d->gbody[g], Ro);
-  }
+  for (int g = 0; g < d->ngroup && d->hinge[g].kin; g++) place_body(w, g);
   prescribe_velocities(w, 1);
 }
+
 
 /* free motion -> ODE: bodies at the kinematic pose, moving at the servo velocities */
 static void robot_to_ode(stWorld *w) {
@@ -942,13 +902,27 @@ static void read_state(stWorld *w) {
   for (int i = 0; i < 3; i++) w->obj[i] = o[i];
 }
 
-void st_world_set_seed(stWorld *w, uint64_t key) {
-  if (w->dynamic) ((dynInternal *)w->internal_)->seed = key;
+/* ---- reset ------------------------------------------------------------------------------- */
+
+/* the stops of a hinge at lo, hi; ODE ignores a low stop above the high one (and vice versa):
+ * they are set in a safe order */
+static void set_stops(dynHinge *hg, double lo, double hi) {
+  if (lo > hg->hi_set) {
+    dJointSetHingeParam(hg->j, dParamHiStop, hi);
+    dJointSetHingeParam(hg->j, dParamLoStop, lo);
+  } else {
+    dJointSetHingeParam(hg->j, dParamLoStop, lo);
+    dJointSetHingeParam(hg->j, dParamHiStop, hi);
+  }
+  hg->lo_set = lo;
+  hg->hi_set = hi;
 }
 
-void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]) {
+static void dyn_set_seed(stWorld *w, uint64_t key) { ((dynInternal *)w->internal_)->seed = key; }
+
+/* the robot's bodies at rest in the posture qhat (clamped to [0, 1], NaN -> 0) */
+static void reset_pose(stWorld *w, const double *qhat) {
   dynInternal *d = w->internal_;
-  st__ode_init();
   double q[ST_NDOF];
   for (int k = 0; k < ST_NDOF; k++)
     q[k] = !(qhat[k] >= 0.0) ? 0.0 : qhat[k] > 1.0 ? 1.0 : qhat[k]; /* NaN -> 0 */
@@ -956,6 +930,10 @@ void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const do
   for (int i = 0; i < d->nhinge; i++) d->vel[i] = 0.0;
   place_bodies(w);
   prescribe_velocities(w, 0); /* at rest */
+}
+
+/* the object at rest at obj (at the origin when obj is not finite); 1 when it is finite */
+static int reset_object(dynInternal *d, const double obj[3]) {
   const int ok = isfinite(obj[0]) && isfinite(obj[1]) && isfinite(obj[2]);
   dBodySetPosition(d->ball, ok ? obj[0] : 0, ok ? obj[1] : 0, ok ? obj[2] : 0);
   static const dMatrix3 I = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
@@ -965,23 +943,23 @@ void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const do
   dBodySetForce(d->ball, 0, 0, 0);
   dBodySetTorque(d->ball, 0, 0, 0);
   dBodyEnable(d->ball);
+  return ok;
+}
+
+/* motors at rest, the stops as built (speculative_stops may have moved them), the robot's
+ * bodies in ODE's step */
+static void reset_joints(dynInternal *d) {
   for (int i = 0; i < d->nhinge; i++) {
     dynHinge *hg = &d->hinge[i];
     dJointSetHingeParam(hg->j, dParamVel, 0.0);
-    /* the stops as built (speculative_stops may have moved them) */
-    const double lo = hg->lo - d->def.stop_margin, hi = hg->hi + d->def.stop_margin;
-    if (lo > hg->hi_set) {
-      dJointSetHingeParam(hg->j, dParamHiStop, hi);
-      dJointSetHingeParam(hg->j, dParamLoStop, lo);
-    } else {
-      dJointSetHingeParam(hg->j, dParamLoStop, lo);
-      dJointSetHingeParam(hg->j, dParamHiStop, hi);
-    }
-    hg->lo_set = lo;
-    hg->hi_set = hi;
+    set_stops(hg, hg->lo - d->def.stop_margin, hg->hi + d->def.stop_margin);
   }
   for (int g = 0; g < d->ngroup; g++) dBodyEnable(d->gbody[g]);
   d->robot_dyn = 1;
+}
+
+/* the per-trial counters, flags and quickstep's generator */
+static void reset_counters(dynInternal *d) {
   d->obj_table = 1;
   d->messages = 0;
   d->retries = 0;
@@ -989,6 +967,15 @@ void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const do
   d->unstable = 0;
   d->reason[0] = 0;
   d->rand_state = (uint32_t)(st_rng_mix64(d->seed ^ 0x6f64655f72616e64ull) >> 32);
+}
+
+static void dyn_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]) {
+  dynInternal *d = w->internal_;
+  st__ode_init();
+  reset_pose(w, qhat);
+  const int ok = reset_object(d, obj);
+  reset_joints(d);
+  reset_counters(d);
   w->step = 0;
   memcpy(w->obj_start, obj, sizeof w->obj_start);
   memcpy(w->target, target, sizeof w->target);
@@ -1000,9 +987,11 @@ void st__dyn_reset(stWorld *w, const double *qhat, const double obj[3], const do
   if (!ok) set_unstable(w, "object position is not finite");
 }
 
-void st__dyn_update(stWorld *w) {
+static void dyn_update(stWorld *w) {
   if (!((dynInternal *)w->internal_)->unstable) read_state(w);
 }
+
+/* ---- stepping ---------------------------------------------------------------------------- */
 
 /* the servo law of SPEC §3 for every joint, from its current angle: d->vel (rad/s) */
 static void servo(stWorld *w, const double *y) {
@@ -1026,7 +1015,7 @@ static void servo(stWorld *w, const double *y) {
  * stops a little early rather than late. */
 static void speculative_stops(dynInternal *d, double vmax) {
   for (int i = 0; i < d->nhinge; i++) {
-    const dynHinge *hg = &d->hinge[i];
+    dynHinge *hg = &d->hinge[i];
     if (hg->kin) continue;
     const double rate = dJointGetHingeAngleRate(hg->j);
     double lo = hg->lo - d->def.stop_margin, hi = hg->hi + d->def.stop_margin;
@@ -1037,17 +1026,7 @@ static void speculative_stops(dynInternal *d, double vmax) {
       if (a + r < lo && a > lo) lo = a;
       if (a + r > hi && a < hi) hi = a;
     }
-    if (lo == hg->lo_set && hi == hg->hi_set) continue;
-    /* ODE ignores a low stop above the high one (and vice versa): set them in a safe order */
-    if (lo > hg->hi_set) {
-      dJointSetHingeParam(hg->j, dParamHiStop, hi);
-      dJointSetHingeParam(hg->j, dParamLoStop, lo);
-    } else {
-      dJointSetHingeParam(hg->j, dParamLoStop, lo);
-      dJointSetHingeParam(hg->j, dParamHiStop, hi);
-    }
-    d->hinge[i].lo_set = lo;
-    d->hinge[i].hi_set = hi;
+    if (lo != hg->lo_set || hi != hg->hi_set) set_stops(hg, lo, hi);
   }
 }
 
@@ -1110,48 +1089,73 @@ static int ode_substep(stWorld *w, stContacts *c) {
   }
 }
 
-void st_world_step_dynamic(stWorld *w, const double *y) {
-  if (!w->dynamic) {
-    st_world_step_kinematic(w, y);
-    return;
-  }
-  dynInternal *d = w->internal_;
-  if (d->unstable) return;
+/* 1 when every command is finite; else the world becomes unstable */
+static int commands_ok(stWorld *w, const double *y) {
   for (int k = 0; k < ST_NDOF; k++)
     if (!isfinite(y[k])) {
       set_unstable(w, "command y[%d] = %g is not finite", k, y[k]);
-      return;
+      return 0;
     }
+  return 1;
+}
+
+/* one sub-step: the servo velocities, then free motion while nothing can touch within it (the
+ * servos are exact: they never saturate without contact; the robot moves kinematically and
+ * ODE steps the object alone), else the robot in ODE's step. Contacts are ORed into c. Returns
+ * 0 when the world became unstable. */
+static int substep(stWorld *w, const double *y, stContacts *c) {
+  dynInternal *d = w->internal_;
+  servo(w, y);
+  if (!d->robot_dyn && robot_near(w, d->def.contact_margin)) robot_to_ode(w);
+  if (d->robot_dyn) {
+    for (int i = 0; i < d->nhinge; i++)
+      if (!d->hinge[i].kin) dJointSetHingeParam(d->hinge[i].j, dParamVel, d->vel[i]);
+    if (d->nkin) place_kinematic(w);
+    speculative_stops(d, w->robot->max_velocity);
+    d->dyn_substeps++;
+  } else {
+    for (int i = 0; i < d->nhinge; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
+    st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
+  }
+  const int ok = ode_substep(w, c);
+  if (d->robot_dyn) /* the exact servos advance as in free motion */
+    for (int i = 0; i < d->nkin; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
+  if (!ok) {
+    set_unstable(w, "ODE could not allocate its step memory");
+    return 0;
+  }
+  return bodies_ok(w);
+}
+
+/* 1 when every joint is within its range by limit_tolerance; else the world becomes unstable */
+static int joints_in_range(stWorld *w) {
+  dynInternal *d = w->internal_;
+  for (int i = 0; i < d->nhinge; i++) {
+    const dynHinge *hg = &d->hinge[i];
+    const double a = d->angle[hg->link];
+    const double tol = d->def.limit_tolerance;
+    if (!isfinite(a) || a < hg->lo - tol || a > hg->hi + tol) {
+      set_unstable(w, "joint '%s' at %.2f deg, beyond its range %.2f..%.2f deg by more than "
+                   "limit_tolerance_deg %.2f", w->robot->model->jnt_name[hg->link], a / ST_DEG,
+                   hg->lo / ST_DEG, hg->hi / ST_DEG, d->def.limit_tolerance / ST_DEG);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+static void dyn_step(stWorld *w, const double *y) {
+  dynInternal *d = w->internal_;
+  if (d->unstable || !commands_ok(w, y)) return;
   st__ode_init();
   stContacts acc;
   memset(&acc, 0, sizeof acc);
   for (int s = 0; s < d->nsub; s++) {
-    servo(w, y);
-    /* free motion while nothing can touch within this sub-step: the servos are exact (they
-     * never saturate without contact), the robot moves kinematically and ODE steps the object
-     * alone; else the robot joins ODE's step */
-    if (!d->robot_dyn && robot_near(w, d->def.contact_margin)) robot_to_ode(w);
     stContacts c;
     memset(&c, 0, sizeof c);
-    if (d->robot_dyn) {
-      for (int i = 0; i < d->nhinge; i++)
-        if (!d->hinge[i].kin) dJointSetHingeParam(d->hinge[i].j, dParamVel, d->vel[i]);
-      if (d->nkin) place_kinematic(w);
-      speculative_stops(d, w->robot->max_velocity);
-      d->dyn_substeps++;
-    } else {
-      for (int i = 0; i < d->nhinge; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
-      st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
-    }
-    const int ok = ode_substep(w, &c);
-    if (d->robot_dyn) /* the exact servos advance as in free motion */
-      for (int i = 0; i < d->nkin; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
+    const int fine = substep(w, y, &c);
     if (s > 0) contacts_or(&acc, &c); /* the state after this control step's previous sub-step */
-    if (!ok) {
-      set_unstable(w, "ODE could not allocate its step memory");
-      break;
-    }
-    if (!bodies_ok(w)) break;
+    if (!fine) break;
   }
   w->step++;
   if (d->unstable) return;
@@ -1163,33 +1167,19 @@ void st_world_step_dynamic(stWorld *w, const double *y) {
   contacts_or(&acc, &c);
   w->contacts = acc;
   read_state(w);
-  for (int i = 0; i < d->nhinge; i++) {
-    const dynHinge *hg = &d->hinge[i];
-    const double a = d->angle[hg->link];
-    const double tol = d->def.limit_tolerance;
-    if (!isfinite(a) || a < hg->lo - tol || a > hg->hi + tol) {
-      set_unstable(w, "joint '%s' at %.2f deg, beyond its range %.2f..%.2f deg by more than "
-                   "limit_tolerance_deg %.2f", w->robot->model->jnt_name[hg->link], a / ST_DEG,
-                   hg->lo / ST_DEG, hg->hi / ST_DEG, d->def.limit_tolerance / ST_DEG);
-      return;
-    }
-  }
+  if (!joints_in_range(w)) return;
   /* back to free motion once the robot is clear of the table and the object */
   if (d->robot_dyn && d->def.free_motion && !robot_near(w, d->def.contact_margin))
     robot_to_free(w, 1);
 }
 
-void st_world_step(stWorld *w, const double *y) {
-  if (w->dynamic) st_world_step_dynamic(w, y);
-  else st_world_step_kinematic(w, y);
+/* ---- queries ------------------------------------------------------------------------------- */
+
+static void dyn_set_object_table_collision(stWorld *w, int on) {
+  ((dynInternal *)w->internal_)->obj_table = !!on;
 }
 
-void st_world_set_object_table_collision(stWorld *w, int on) {
-  if (w->dynamic) ((dynInternal *)w->internal_)->obj_table = !!on;
-}
-
-int st_world_object_fell(const stWorld *w) {
-  if (!w->dynamic) return 0;
+static int dyn_object_fell(const stWorld *w) {
   const dynInternal *d = w->internal_;
   const stScene *s = w->scene;
   const double *o = w->obj;
@@ -1199,21 +1189,17 @@ int st_world_object_fell(const stWorld *w) {
   return off && o[2] < s->table_top_z;
 }
 
-int st_world_unstable(const stWorld *w) {
-  return w->dynamic && ((const dynInternal *)w->internal_)->unstable;
+static int dyn_unstable(const stWorld *w) { return ((const dynInternal *)w->internal_)->unstable; }
+
+static const char *dyn_unstable_reason(const stWorld *w) {
+  return ((const dynInternal *)w->internal_)->reason;
 }
 
-const char *st_world_unstable_reason(const stWorld *w) {
-  return w->dynamic ? ((const dynInternal *)w->internal_)->reason : "";
-}
-
-void st_world_dynamic_info(const stWorld *w, stDynInfo *info) {
-  memset(info, 0, sizeof *info);
-  if (!w->dynamic) return;
+static void dyn_info(const stWorld *w, stDynInfo *info) {
   const dynInternal *d = w->internal_;
   info->bodies = d->ngroup;
   info->hinges = d->nhinge;
-  info->geoms = d->ngeom;
+  info->geoms = d->geoms.n;
   info->substeps = d->nsub;
   info->solver = d->solver;
   info->rand_interposed = g_rand_interposed;
@@ -1223,11 +1209,21 @@ void st_world_dynamic_info(const stWorld *w, stDynInfo *info) {
   info->robot_in_ode = d->robot_dyn;
 }
 
-void st_world_joint_angles(const stWorld *w, double *angle) {
-  if (!w->dynamic) {
-    st_robot_angles(w->robot, w->qhat, angle);
-    return;
-  }
+static void dyn_joint_angles(const stWorld *w, double *angle) {
   const dynInternal *d = w->internal_;
   memcpy(angle, d->angle, sizeof(double) * (size_t)w->robot->nbody);
 }
+
+static const stWorldBackend dyn_backend = {
+    .destroy = dyn_destroy,
+    .reset = dyn_reset,
+    .update = dyn_update,
+    .joint_angles = dyn_joint_angles,
+    .step = dyn_step,
+    .set_seed = dyn_set_seed,
+    .set_object_table_collision = dyn_set_object_table_collision,
+    .object_fell = dyn_object_fell,
+    .unstable = dyn_unstable,
+    .unstable_reason = dyn_unstable_reason,
+    .info = dyn_info,
+};

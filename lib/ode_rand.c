@@ -20,7 +20,7 @@
 #include <stdarg.h>
 #include <stdint.h>
 
-#include "dynworld.h"
+#include "ode_util.h"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define ST_THREAD_LOCAL __thread

@@ -96,15 +96,23 @@ static void test_actuation_law(void) {
   CU_ASSERT_DOUBLE_EQUAL(st_actuate(0.01, -1.0, 100, 40, 0.05, 10), 0.0, 0.0);
 }
 
-static void test_world_saturating(void) {
+/* a kinematic world of the default scene, reset with every DOF at qhat 0.5 and the object at
+ * obj; NULL on failure */
+static stWorld *half_way_world(const double obj[3]) {
   stRobot *r = robot();
-  CU_ASSERT_PTR_NOT_NULL_FATAL(r);
   stWorld *w = NULL;
   char err[256];
-  CU_ASSERT_EQUAL_FATAL(st_world_create(r, &g_scene, &w, err, sizeof err), ST_OK);
-  double q0[ST_NDOF], y[ST_NDOF];
+  if (!r || st_world_create(r, &g_scene, &w, err, sizeof err)) return NULL;
+  double q0[ST_NDOF];
   for (int d = 0; d < ST_NDOF; d++) q0[d] = 0.5;
-  st_world_reset(w, q0, g_scene.obj_pos[0], g_scene.target[0]);
+  st_world_reset(w, q0, obj, g_scene.target[0]);
+  return w;
+}
+
+static void test_world_saturating(void) {
+  stWorld *w = half_way_world(g_scene.obj_pos[0]);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(w);
+  double y[ST_NDOF];
   /* torso yaw range 50 deg: from 0.5 with alpha 37 the first step moves 0.925 deg */
   for (int d = 0; d < ST_NDOF; d++) y[d] = d % 2 ? 1.0 : 0.0;
   st_world_step_kinematic(w, y);
@@ -116,6 +124,45 @@ static void test_world_saturating(void) {
   }
   CU_ASSERT_EQUAL(w->step, 401);
   st_world_destroy(w);
+}
+
+/* lib/world.c: every step function of a kinematic world is the kinematic step, and the
+ * dynamic-mode queries give the answers world.h states for a kinematic world */
+static void test_world_kinematic_dispatch(void) {
+  const stRobot *r = robot();
+  /* the object 1 m below the table top: a dynamic world would report it fallen */
+  const double low[3] = {g_scene.obj_pos[0][0], g_scene.obj_pos[0][1], g_scene.table_top_z - 1.0};
+  stWorld *w = half_way_world(low);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(w);
+  double y[ST_NDOF];
+  for (int d = 0; d < ST_NDOF; d++) y[d] = 1.0;
+  /* torso yaw, range 50 deg, alpha 37 deg/s: 0.5 -> 0.5 + 18.5 * 0.05 / 50 = 0.5185, then
+   * 0.5185 + 37 * 0.4815 * 0.05 / 50 = 0.5363155 */
+  st_world_step_dynamic(w, y);
+  CU_ASSERT_DOUBLE_EQUAL(w->qhat[0], 0.5185, 1e-12);
+  st_world_step(w, y);
+  CU_ASSERT_DOUBLE_EQUAL(w->qhat[0], 0.5363155, 1e-12);
+  CU_ASSERT_EQUAL(w->step, 2);
+  CU_ASSERT_EQUAL(w->dynamic, 0);
+  st_world_set_seed(w, 12345);
+  st_world_set_object_table_collision(w, 0);
+  CU_ASSERT_EQUAL(st_world_object_fell(w), 0);
+  CU_ASSERT_EQUAL(st_world_unstable(w), 0);
+  CU_ASSERT_STRING_EQUAL(st_world_unstable_reason(w), "");
+  stDynInfo info, zero;
+  memset(&info, 0xff, sizeof info);
+  memset(&zero, 0, sizeof zero);
+  st_world_dynamic_info(w, &info);
+  CU_ASSERT_EQUAL(memcmp(&info, &zero, sizeof info), 0);
+  /* joint angles are those of qhat: torso yaw's master joint at its range's 0.5363155 */
+  double *angle = calloc((size_t)r->nbody, sizeof *angle);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(angle);
+  st_world_joint_angles(w, angle);
+  const double lo = r->dof_lo[0], hi = r->dof_hi[0];
+  CU_ASSERT_DOUBLE_EQUAL(angle[r->dof_body[0]], lo + 0.5363155 * (hi - lo), 1e-12);
+  free(angle);
+  st_world_destroy(w);
+  st_world_destroy(NULL);
 }
 
 /* posture of the thesis-like check in data/README.md: shoulder -30/30/0, elbow 60 */
@@ -365,6 +412,7 @@ void st_suite_kin(void) {
   ST_ADD_TEST(test_ee_matches_ikin);
   ST_ADD_TEST(test_actuation_law);
   ST_ADD_TEST(test_world_saturating);
+  ST_ADD_TEST(test_world_kinematic_dispatch);
   ST_ADD_TEST(test_touch_and_contacts);
   ST_ADD_TEST(test_quantities);
   ST_ADD_TEST(test_moving_penalty);

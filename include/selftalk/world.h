@@ -40,9 +40,8 @@ typedef struct stWorld {
   long step;              /* control steps since reset */
   int reference_contacts; /* 1: test every geometry with ODE's narrow phase, no culling or
                              shortcuts (slow; for validation and as a benchmark baseline) */
-  void *internal_;        /* collision geometry */
-  int dynamic;            /* 1 for a world of st_world_create_dynamic (internal_ is then the
-                             ODE world; set at creation) */
+  void *internal_;        /* the kinematic or dynamic backend's state (lib/world_backend.h) */
+  int dynamic;            /* 1 for a world of st_world_create_dynamic (set at creation) */
 } stWorld;
 
 /* Allocates a world for a robot and scene (both must outlive it). */
