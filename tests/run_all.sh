@@ -9,7 +9,8 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
 run_part() {
-  echo "== $1"
+  local name=$1
+  echo "== $name"
   shift
   "$@" 2>&1 | tee "$log"
   local rc=${PIPESTATUS[0]}
@@ -20,7 +21,10 @@ run_part() {
   f=$(echo "$line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\2/p')
   total_pass=$((total_pass + ${p:-0}))
   total_fail=$((total_fail + ${f:-0}))
-  if [ "$rc" != 0 ]; then
+  # a part that exits non-zero, or reports no passed check at all (it ran nothing, or its
+  # summary line is missing), fails
+  if [ "$rc" != 0 ] || [ "${p:-0}" = 0 ]; then
+    [ "$rc" = 0 ] && echo "run_all: '$name' reported no passed check: FAILED"
     parts_failed=$((parts_failed + 1))
     [ "${f:-0}" = 0 ] && total_fail=$((total_fail + 1))
   fi
