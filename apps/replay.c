@@ -5,6 +5,8 @@
  *          [--index I] [--force OUT=VALUE[@STEP]]... [--set section.key=value]...
  *
  * K = 0..15 (primitive K/4: reach, open, grasp, move; posture and object position K%4).
+ * The genotypes are of network.arch's architecture (base for the primitive stages' runs; A or
+ * B replays an integrated-stage genotype on the primitive trials, without the secondary input).
  * --generation picks the trials' random offsets; --index the genotype of GENOME (a number, or
  * "last"). Without --index: in a file of per-generation bests (evolve's best.genome, whose
  * records carry "# generation G") the record of generation G, or the last record and its
@@ -131,7 +133,10 @@ int main(int argc, char **argv) {
   }
   char err[1024];
   stGenomeSet set;
-  if (st_genome_set_read(genome, ST_GENES_BASE, &set, err, sizeof err)) app_die(prog, "%s", err);
+  /* network.arch: a genotype of the integrated stage (type A or B) replays primitive trials too */
+  const stNetArch arch = (stNetArch)cfg.network_arch;
+  if (st_genome_set_read(genome, st_arch_ngenes(arch), &set, err, sizeof err))
+    app_die(prog, "%s (network.arch = %s)", err, st_arch_name(arch));
   if (index_last) index = set.count - 1;
   if (index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
   if (index < 0) { /* not given: see the header comment */
@@ -155,7 +160,7 @@ int main(int argc, char **argv) {
   stProtocol *p = NULL;
   if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
   stNetParams np;
-  if (st_net_decode(&p->net, ST_ARCH_BASE, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
+  if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);
 
   stTrialSpec t;

@@ -18,6 +18,10 @@
 
 #define CKPT_MAGIC "selftalk-checkpoint 1"
 
+/* the primitive stages evolve the base network; network.arch names what the integrated stage
+ * grows it into (thesis 2.9.2), so a run without that stage refuses another value of it */
+static const stNetArch PRIM_ARCH = ST_ARCH_BASE;
+
 typedef struct run {
   const stEvolveDef *def;
   const stConfig *cfg;
@@ -150,7 +154,7 @@ static stStatus evaluate(run *R, int generation, char *err, size_t errsz) {
     for (int i = 0; i < gd->population; i++) {
       stNetParams np;
       char e[512];
-      stStatus st = st_net_decode(&R->proto->net, ST_ARCH_BASE, st_ga_genome(R->ga, i), &np, e, sizeof e);
+      stStatus st = st_net_decode(&R->proto->net, PRIM_ARCH, st_ga_genome(R->ga, i), &np, e, sizeof e);
       if (!st) st = st_stage_evaluate(R->proto, ws, stage, generation, i, &np, &R->eval[i], e, sizeof e);
       R->fitness[i] = st ? NAN : R->eval[i].fitness;
       if (st) {
@@ -236,7 +240,7 @@ static stStatus load_initial(run *R, stGenomeSet *set, char *err, size_t errsz) 
   const char *path = R->cfg->stage_init_population;
   memset(set, 0, sizeof *set);
   if (!path[0]) return ST_OK;
-  stStatus st = st_genome_set_read(path, ST_GENES_BASE, set, err, errsz);
+  stStatus st = st_genome_set_read(path, st_arch_ngenes(PRIM_ARCH), set, err, errsz);
   if (st) return st;
   if (set->count < R->cfg->ga_population) {
     st__errf(err, errsz, "stage.init_population: %s has %d genotypes (expected at least %d)", path,
@@ -255,12 +259,15 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   const stConfig *cfg = def->cfg;
   stStatus st = st_config_validate(cfg, err, errsz);
   if (st) return st;
-  switch (cfg->stage_stages) {
-    case 0: R.stages[R.nstages++] = ST_STAGE_SIMPLE; break;
-    case 1: R.stages[R.nstages++] = ST_STAGE_MAIN; break;
-    default:
-      R.stages[R.nstages++] = ST_STAGE_SIMPLE;
-      R.stages[R.nstages++] = ST_STAGE_MAIN;
+  /* every key acts in this run or keeps its default */
+  const unsigned stages = st_config_run_stages(cfg);
+  if ((st = st_config_check_stages(cfg, stages, err, errsz))) return st;
+  if (stages & ST_CONFIG_SIMPLE_PRIM) R.stages[R.nstages++] = ST_STAGE_SIMPLE;
+  if (stages & ST_CONFIG_MAIN_PRIM) R.stages[R.nstages++] = ST_STAGE_MAIN;
+  if (!R.nstages) {
+    st__errf(err, errsz, "key 'stage.stages': %s has no stage this program runs (expected "
+             "simple_prim, main_prim or prims)", st_config_enum_name("stage", "stages", cfg->stage_stages));
+    return ST_ERR_ARG;
   }
   R.limit = def->generations > 0 ? def->generations : cfg->ga_max_generations;
   R.threads = def->threads > 0 ? def->threads : cfg->run_threads > 0 ? cfg->run_threads : omp_get_num_procs();
@@ -293,13 +300,8 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
     return st;
   }
 
-  stGaDef gd = st_ga_default_def();
-  gd.population = cfg->ga_population;
-  gd.elites = cfg->ga_elites;
-  gd.parents = cfg->ga_parents;
-  gd.mutation_rate = cfg->ga_mutation_rate;
-  gd.seed = (uint64_t)cfg->run_seed;
-  gd.ngenes = ST_GENES_BASE;
+  stGaDef gd = st_ga_def_from_config(cfg);
+  gd.ngenes = st_arch_ngenes(PRIM_ARCH);
   const stGenome *pop0 = have_ckpt ? ck.pop.genome : init.count ? init.genome : NULL;
   int npop0 = have_ckpt ? ck.pop.count : init.count;
   st = st_ga_create(&gd, pop0, npop0, NULL, &R.ga, err, errsz);

@@ -185,6 +185,92 @@ static void test_config_table(void) {
   CU_ASSERT_PTR_NULL(st_config_key(-1));
 }
 
+/* which stages read a key: the primitive stages do not read the integrated stage's keys, nor
+ * simple-prim (kinematic) the dynamic world's; a run refuses such a key unless it is at its
+ * default (issue 13: no key silently ignored) */
+static void test_config_stage_keys(void) {
+  stConfig c;
+  char err[512];
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(st_config_run_stages(&c), ST_CONFIG_SIMPLE_PRIM); /* default: simple_prim */
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "stage.stages=main_prim", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_run_stages(&c), ST_CONFIG_MAIN_PRIM);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "stage.stages=prims", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_run_stages(&c), ST_CONFIG_SIMPLE_PRIM | ST_CONFIG_MAIN_PRIM);
+
+  const unsigned S = ST_CONFIG_SIMPLE_PRIM, M = ST_CONFIG_MAIN_PRIM, I = ST_CONFIG_INTEGRATED;
+  CU_ASSERT_EQUAL(st_config_key_stages(st_config_find("network", "arch")), I);
+  CU_ASSERT_EQUAL(st_config_key_stages(st_config_find("network", "typeb_init_gene")), I);
+  CU_ASSERT_EQUAL(st_config_key_stages(st_config_find("ga", "mutation_rate_integrated")), I);
+  CU_ASSERT_EQUAL(st_config_key_stages(st_config_find("ga", "integrated_generations")), I);
+  CU_ASSERT_EQUAL(st_config_key_stages(st_config_find("ga", "mutation_rate")), S | M);
+  CU_ASSERT_EQUAL(st_config_key_stages(st_config_find("dynamics", "gravity")), M | I);
+  CU_ASSERT_EQUAL(st_config_key_stages(st_config_find("stage", "simple_steps")), S);
+  CU_ASSERT_EQUAL(st_config_key_stages(st_config_find("network", "lambda")), ST_CONFIG_ALL_STAGES);
+  /* every row of the table names a real key: 24 single keys plus the caretaker and dynamics
+   * sections, counted here from the key table itself */
+  int restricted = 0, whole = 0;
+  for (int i = 0; i < st_config_nkeys(); i++) {
+    restricted += st_config_key_stages(i) != ST_CONFIG_ALL_STAGES;
+    whole += !strcmp(st_config_key(i)->section, "caretaker") || !strcmp(st_config_key(i)->section, "dynamics");
+  }
+  CU_ASSERT_EQUAL(restricted, 24 + whole);
+
+  /* defaults pass every combination of stages */
+  st_config_default(&c);
+  for (unsigned st = 1; st <= ST_CONFIG_ALL_STAGES; st++)
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, st, err, sizeof err), ST_OK);
+  /* the integrated stage's keys: refused by the primitive stages, accepted by it */
+  static const char *const integrated[][2] = {
+      {"network.arch=A", "key 'network.arch': A is read only by the integrated stage, which this "
+                         "run (simple-prim and main-prim) does not have: the primitive stages "
+                         "evolve the base network"},
+      {"network.typeb_init_gene=1", "key 'network.typeb_init_gene': 1 is read only by the integrated stage"},
+      {"ga.mutation_rate_integrated=0.05", "key 'ga.mutation_rate_integrated': 0.05 is read only by "
+                                            "the integrated stage"},
+      {"ga.integrated_generations=7", "key 'ga.integrated_generations': 7 is read only by the integrated stage"},
+      {"caretaker.first_step=2", "key 'caretaker.first_step': 2 is read only by the integrated stage"},
+  };
+  for (size_t i = 0; i < sizeof integrated / sizeof integrated[0]; i++) {
+    st_config_default(&c);
+    CU_ASSERT_EQUAL_FATAL(st_config_set(&c, integrated[i][0], err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, S | M, err, sizeof err), ST_ERR_ARG);
+    ST_ASSERT_CONTAINS(err, integrated[i][1]);
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, I, err, sizeof err), ST_OK);
+  }
+  /* stage-specific keys of the primitive stages */
+  st_config_default(&c);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "dynamics.gravity=5", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'dynamics.gravity': 5 is read only by the main-prim and integrated "
+                          "stages, which this run (simple-prim) does not have: simple-prim runs in "
+                          "kinematic mode (expected the default, 9.81)");
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S | M, err, sizeof err), ST_OK);
+  st_config_default(&c);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "stage.simple_steps=50", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, M, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'stage.simple_steps': 50 is read only by the simple-prim stage");
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_OK);
+  /* a key set to its default explicitly is not an error */
+  st_config_default(&c);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "network.arch=base", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "ga.mutation_rate_integrated=0.04", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_OK);
+}
+
+/* ranges live in the key table: code that builds its definitions checks them there */
+static void test_config_check_number(void) {
+  char err[256];
+  CU_ASSERT_EQUAL(st_config_check_number("ga", "population", 2, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("ga", "population", 1, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "ga.population: 1 is out of range (expected an integer in [2, 100000])");
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "gravity", 100, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "gravity", 101, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "dynamics.gravity: 101 is out of range (expected a number in [0, 100])");
+  CU_ASSERT_EQUAL(st_config_check_number("robot", "urdf", 1, err, sizeof err), ST_ERR_ARG);
+  CU_ASSERT_EQUAL(st_config_check_number("ga", "nope", 1, err, sizeof err), ST_ERR_ARG);
+}
+
 void st_suite_config(void) {
   ST_ADD_SUITE("config");
   ST_ADD_TEST(test_config_defaults);
@@ -193,4 +279,6 @@ void st_suite_config(void) {
   ST_ADD_TEST(test_config_errors);
   ST_ADD_TEST(test_config_set_errors);
   ST_ADD_TEST(test_config_table);
+  ST_ADD_TEST(test_config_stage_keys);
+  ST_ADD_TEST(test_config_check_number);
 }
