@@ -6,6 +6,8 @@
 #   make asan       tests under AddressSanitizer + UBSan
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
+#   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
+#                   to move results (tests/check_golden.sh)
 #   make install PREFIX=/usr/local
 
 PREFIX ?= /usr/local
@@ -63,14 +65,14 @@ HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
   libassimp-dev libcunit1-dev libinih-dev python3 valgrind
-# Debian's interpreter: the one installs for (another python3 may come first
+# Debian's interpreter, for the tools (another python3 may come first
 # in PATH)
 PYTHON := /usr/bin/python3
 RUN_CONFIG := configs/simple_prim.cfg
 RUN_DIR := runs/simple_prim-s1
 
 .PHONY: all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
-  bench-only install uninstall clean
+  bench-only golden-update install uninstall clean
 .DELETE_ON_ERROR:
 
 all: $(CORE_A) $(CORE_SO) $(FULL_A) $(FULL_SO) $(APPS) $(TOOLS)
@@ -147,6 +149,11 @@ valgrind-only: $(TEST_BIN)
 
 bench-only: all
 	./$(APPDIR)/bench --mode kinematic
+
+# golden results (tests/golden/golden.sha256, checked by make test): rewrite them after a change
+# meant to move results, e.g. `make golden-update GOLDEN=dynamic` after a model change
+golden-update: all
+	@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/check_golden.sh --update $(GOLDEN)
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/selftalk $(DESTDIR)$(PREFIX)/lib/pkgconfig \

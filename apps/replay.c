@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT
  * replay: runs one trial of a saved genotype and writes its per-step trace (SPEC §9).
  *
- *   replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] [--generation G]
- *          [--index I] [--force OUT=VALUE[@STEP]]... [--set section.key=value]...
+ *   replay GENOME CONFIG --trial K [--out trace.csv] [--exact] [--stage simple|main]
+ *          [--generation G] [--index I] [--force OUT=VALUE[@STEP]]... [--set section.key=value]...
  *
  * K = 0..15 (primitive K/4: reach, open, grasp, move; posture and object position K%4).
  * The genotypes are of network.arch's architecture (base for the primitive stages' runs; A or
@@ -12,6 +12,8 @@
  * records carry "# generation G") the record of generation G, or the last record and its
  * generation when --generation is not given either; otherwise the first genotype (the best in
  * population.genome) with generation 0. Prints the genotype chosen and a one-line summary.
+ * --exact prints the trace's reals with 17 significant digits (they read back bit for bit: for
+ * comparing runs, and the golden results of tests/check_golden.sh) instead of 9.
  * --force overrides network output OUT (0..11 the DOF of SPEC §3, 12 focus) with VALUE (0..1)
  * from step STEP on (default 0): what the individual would do with, e.g., its thumb opposed. */
 #include <stdio.h>
@@ -59,8 +61,7 @@ static stForce force_arg(const char *v) {
 
 typedef struct traceCtx {
   FILE *f;
-  const stProtocol *p;
-  const stTrialSpec *t;
+  int digits; /* significant digits of the trace's reals: 9, or 17 with --exact */
 } traceCtx;
 
 static void header(FILE *f) {
@@ -72,29 +73,37 @@ static void header(FILE *f) {
              "event,d_r,d_g,d_m,d_mhat,h,p,touching,lifted\n");
 }
 
+static void real(const traceCtx *c, double x) { fprintf(c->f, ",%.*g", c->digits, x); }
+
 static void on_step(void *ctx, const stTraceStep *s) {
-  traceCtx *c = ctx;
+  const traceCtx *c = ctx;
   FILE *f = c->f;
   const stWorld *w = s->world;
   const stQuantities *q = s->q;
+  static const char *const events[] = {"", "end_success", "end_failure", "end_quiet"};
   fprintf(f, "%d", s->step);
-  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",%.9g", w->qhat[d]);
-  fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", q->palm[0], q->palm[1], q->palm[2],
-          w->obj[0], w->obj[1], w->obj[2], w->target[0], w->target[1], w->target[2]);
+  for (int d = 0; d < ST_NDOF; d++) real(c, w->qhat[d]);
+  const double *points[3] = {q->palm, w->obj, w->target};
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) real(c, points[i][k]);
   for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",%d", w->contacts.touch[i]);
-  fprintf(f, ",%.9g,%d", s->out[ST_NET_OUT_FOCUS], s->focus_target);
+  real(c, s->out[ST_NET_OUT_FOCUS]);
+  fprintf(f, ",%d", s->focus_target);
   for (int m = 0; m < ST_NET_NLING; m++) fprintf(f, ",%g", s->in[ST_NET_IN_LING + m]);
-  fprintf(f, ",%.9g,%.9g,%d,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d\n", s->S, s->P, s->success_now,
-          s->event == ST_END_SUCCESS ? "end_success" : s->event == ST_END_FAILURE ? "end_failure"
-          : s->event == ST_END_QUIET ? "end_quiet" : "", q->d_r, q->d_g, q->d_m, q->d_mhat, q->h,
-          q->p, q->touching, q->lifted);
+  real(c, s->S);
+  real(c, s->P);
+  fprintf(f, ",%d,%s", s->success_now,
+          s->event >= ST_END_SUCCESS && s->event <= ST_END_QUIET ? events[s->event] : "");
+  const double dist[6] = {q->d_r, q->d_g, q->d_m, q->d_mhat, q->h, q->p};
+  for (int i = 0; i < 6; i++) real(c, dist[i]);
+  fprintf(f, ",%d,%d\n", q->touching, q->lifted);
 }
 
 int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *genome = NULL, *out = NULL, *stage_name = NULL;
-  int trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0;
+  int trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0, digits = 9;
   stForce force[MAX_FORCE];
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
@@ -106,6 +115,7 @@ int main(int argc, char **argv) {
       force[nforce++] = force_arg(argv[++i]);
     }
     else if (!strcmp(a, "--stage") && i + 1 < argc) stage_name = argv[++i];
+    else if (!strcmp(a, "--exact")) digits = 17;
     else if (!strcmp(a, "--generation") && i + 1 < argc) generation = app_int_arg(prog, a, argv[++i], 0);
     else if (!strcmp(a, "--index") && i + 1 < argc) {
       if (!strcmp(argv[++i], "last")) index_last = 1;
@@ -117,8 +127,8 @@ int main(int argc, char **argv) {
     else app_die(prog, "unexpected argument '%s'", a);
   }
   if (!genome || !ca.config_path)
-    app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] "
-                  "[--generation G] [--index I] [--force OUT=VALUE[@STEP]]...");
+    app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--exact] "
+                  "[--stage simple|main] [--generation G] [--index I] [--force OUT=VALUE[@STEP]]...");
   if (trial < 0 || trial >= ST_PRIM_TRIALS) app_die(prog, "--trial: expected 0..%d", ST_PRIM_TRIALS - 1);
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
@@ -168,7 +178,7 @@ int main(int argc, char **argv) {
   FILE *f = NULL;
   if (out && !(f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
   if (f) header(f);
-  traceCtx ctx = {f, p, &t};
+  traceCtx ctx = {f, digits};
   stWorkspace ws = {NULL, NULL};
   stTrialResult r;
   uint64_t key = st_rng_keyed((uint64_t)cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,

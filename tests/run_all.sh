@@ -37,6 +37,7 @@ run_part "simprobe against iKin v1.0" bash tests/check_simprobe.sh
 run_part "evolve: threads, kill and resume, bad input" bash tests/check_evolve.sh
 run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
 run_part "tools: run summaries and fitness plots" bash tests/check_tools.sh
+run_part "golden results (tests/golden/golden.sha256)" bash tests/check_golden.sh
 if [ "$BUILD" = build ]; then
   run_part "install + pkg-config" bash tests/check_install.sh
 fi
