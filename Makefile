@@ -64,9 +64,8 @@ TEST_BIN := $(BUILD)/run_tests
 HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
-  libassimp-dev libcunit1-dev libinih-dev python3 valgrind
-# Debian's interpreter, for the tools (another python3 may come first
-# in PATH)
+  libassimp-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind
+# Debian's interpreter, which python3-matplotlib serves (another python3 may come first in PATH)
 PYTHON := /usr/bin/python3
 RUN_CONFIG := configs/simple_prim.cfg
 RUN_DIR := runs/simple_prim-s1
@@ -129,9 +128,10 @@ $(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FU
 test run asan valgrind bench: deps
 	@$(MAKE) --no-print-directory $@-only
 
-# the main job: the simple-prim stage
+# the main job: the simple-prim stage, then what it gave (summary, files, PNG plot)
 run-only: all
 	./$(APPDIR)/evolve $(RUN_CONFIG) --out $(RUN_DIR)
+	@$(PYTHON) tools/run_report.py $(RUN_DIR)
 
 $(BUILD)/example_net: docs/example_net.c $(CORE_A) $(HEADERS)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(CORE_A) $(LIBS_CORE)
