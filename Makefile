@@ -137,7 +137,7 @@ $(BUILD)/example_net: docs/example_net.c $(CORE_A) $(HEADERS)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(CORE_A) $(LIBS_CORE)
 
 test-only: all $(TEST_BIN)
-	@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
+	+@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
 
 asan-only:
 	$(MAKE) BUILD=build-asan APPDIR=build-asan/apps OPT="-O1 -g -fno-omit-frame-pointer" \
