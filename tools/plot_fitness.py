@@ -22,8 +22,11 @@ COLOURS = {"best": "#1f77b4", "mean": "#ff7f0e", "reach": "#2ca02c", "open": "#9
            "grasp": "#d62728", "move": "#8c564b"}
 
 
+PROG = "plot_fitness"  # the name errors carry (tools/run_report.py reads CSVs with read())
+
+
 def die(msg):
-    print(f"plot_fitness: {msg}", file=sys.stderr)
+    print(f"{PROG}: {msg}", file=sys.stderr)
     sys.exit(1)
 
 

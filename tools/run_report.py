@@ -10,16 +10,18 @@ Stage completion is read from fitness.csv (the first generation in which ga.succ
 genotypes solve every trial, as apps/evolve decides it); the plot is tools/plot_fitness.py's.
 """
 import argparse
-import csv
 import os
 import shlex
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_fitness  # noqa: E402
+from plot_fitness import PRIMS, read as read_fitness  # noqa: E402
 from runs_summary import success_genotypes  # noqa: E402
 
-PRIMS = ["reach", "open", "grasp", "move"]
+plot_fitness.PROG = "run_report"
+
 FILES = [  # (name, what it holds)
     ("config.ini", "the resolved configuration, every key (./apps/evolve DIR/config.ini --out NEW reruns it)"),
     ("fitness.csv", "one row per generation: best, mean, worst, the best's F_p and the trials it solves"),
@@ -35,13 +37,9 @@ def die(msg):
 
 
 def read_rows(path):
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        die(f"{path}: {e.strerror}")
-    if not rows or "all_success" not in rows[0] or "best_t0" not in rows[0]:
-        die(f"{path}: expected the fitness.csv of apps/evolve with at least one generation")
+    rows = read_fitness(path, None, None)
+    if "all_success" not in rows[0] or "best_t0" not in rows[0]:
+        die(f"{path}: expected the fitness.csv of apps/evolve (with all_success, best_t0..15)")
     return rows
 
 
