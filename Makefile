@@ -133,9 +133,6 @@ run-only: all
 	./$(APPDIR)/evolve $(RUN_CONFIG) --out $(RUN_DIR)
 	@$(PYTHON) tools/run_report.py $(RUN_DIR)
 
-$(BUILD)/example_net: docs/example_net.c $(CORE_A) $(HEADERS)
-	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(CORE_A) $(LIBS_CORE)
-
 test-only: all $(TEST_BIN)
 	+@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
 
