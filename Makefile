@@ -6,6 +6,8 @@
 #   make asan       tests under AddressSanitizer + UBSan
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
+#   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
+#                   to move results (tests/check_golden.sh)
 #   make install PREFIX=/usr/local
 
 PREFIX ?= /usr/local
@@ -22,12 +24,20 @@ PKGS_SIM := ode ccd urdfdom assimp eigen3
 PKGS_TEST := cunit
 
 WARN := -Wall -Wextra -Wpedantic $(if $(WERROR),-Werror)
-CPPFLAGS_ALL := -Iinclude -Ilib $(shell pkg-config --cflags $(PKGS_CORE) $(PKGS_SIM) 2>/dev/null)
+# The packages' flags come from pkg-config, which only knows them once `make deps` has installed
+# the packages. So they are computed when a recipe first needs them, never while the Makefile is
+# parsed (pkg_flags caches the answer), and the targets that install (test, run, ...) run deps,
+# then a fresh make that builds: nothing from a parse made before the packages existed is used.
+pkg_flags = $(shell pkg-config $(1) 2>/dev/null)$(if $(filter 0,$(.SHELLSTATUS)),,$(error \
+  pkg-config $(1) failed: a package is missing. `make deps` installs them ($(DEB_PACKAGES)); \
+  `make test` and `make run` do it first))
+PKG_CFLAGS = $(eval PKG_CFLAGS := $(call pkg_flags,--cflags $(PKGS_CORE) $(PKGS_SIM)))$(PKG_CFLAGS)
+LIBS_CORE = $(eval LIBS_CORE := $(call pkg_flags,--libs $(PKGS_CORE)) -lm)$(LIBS_CORE)
+LIBS_SIM = $(eval LIBS_SIM := $(call pkg_flags,--libs $(PKGS_SIM)) -lstdc++ -lgomp)$(LIBS_SIM)
+LIBS_TEST = $(eval LIBS_TEST := $(call pkg_flags,--libs $(PKGS_TEST)))$(LIBS_TEST)
+CPPFLAGS_ALL = -Iinclude -Ilib $(PKG_CFLAGS)
 CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(CFLAGS)
 CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
-LIBS_CORE := $(shell pkg-config --libs $(PKGS_CORE) 2>/dev/null) -lm
-LIBS_SIM := $(shell pkg-config --libs $(PKGS_SIM) 2>/dev/null) -lstdc++ -lgomp
-LIBS_TEST := $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null)
 
 # the core needs no simulator: a robot controller can link the network, GA and config alone
 CORE_MODULES := base rng config genome net ga prediction assemble
@@ -54,9 +64,14 @@ TEST_BIN := $(BUILD)/run_tests
 HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
-  libassimp-dev libcunit1-dev libinih-dev python3 valgrind
+  libassimp-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind
+# Debian's interpreter, which python3-matplotlib serves (another python3 may come first in PATH)
+PYTHON := /usr/bin/python3
+RUN_CONFIG := configs/simple_prim.cfg
+RUN_DIR := runs/simple_prim-s1
 
-.PHONY: all deps run test test-only asan valgrind bench install uninstall clean
+.PHONY: all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
+  bench-only golden-update install uninstall clean
 .DELETE_ON_ERROR:
 
 all: $(CORE_A) $(CORE_SO) $(FULL_A) $(FULL_SO) $(APPS) $(TOOLS)
@@ -109,34 +124,33 @@ $(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FU
 	$(CC) $(CPPFLAGS_ALL) -I$(BUILD) $(CFLAGS_ALL) -Wno-pedantic -D_POSIX_C_SOURCE=200809L -o $@ tests/main.c $(TEST_SRC) \
 	  $(FULL_A) $(LIBS_TEST) $(LIBS_SIM) $(LIBS_CORE)
 
-run: deps all
-	@if [ -x $(APPDIR)/evolve ]; then \
-	  ./$(APPDIR)/evolve configs/simple_prim.cfg; \
-	else \
-	  echo "make run: apps/evolve does not exist yet (the primitive stages are still to come)."; \
-	  echo "make run: running the best demo there is instead: docs/example_net.c, the network"; \
-	  echo "make run: and the bitwise GA evolving a toy posture task without the simulator."; \
-	  $(MAKE) --no-print-directory $(BUILD)/example_net && ./$(BUILD)/example_net; \
-	fi
+# the targets that set up first: deps, then a fresh make that computes the flags (pkg_flags)
+test run asan valgrind bench: deps
+	@$(MAKE) --no-print-directory $@-only
 
-$(BUILD)/example_net: docs/example_net.c $(CORE_A) $(HEADERS)
-	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(CORE_A) $(LIBS_CORE)
-
-test: deps all test-only
+# the main job: the simple-prim stage, then what it gave (summary, files, PNG plot)
+run-only: all
+	./$(APPDIR)/evolve $(RUN_CONFIG) --out $(RUN_DIR)
+	@$(PYTHON) tools/run_report.py $(RUN_DIR)
 
 test-only: all $(TEST_BIN)
-	@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
+	+@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
 
-asan:
+asan-only:
 	$(MAKE) BUILD=build-asan APPDIR=build-asan/apps OPT="-O1 -g -fno-omit-frame-pointer" \
 	  SAN="-fsanitize=address,undefined -fno-sanitize-recover=all" test-only
 
-valgrind: $(TEST_BIN)
+valgrind-only: $(TEST_BIN)
 	valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
 	  ./$(TEST_BIN)
 
-bench: all
+bench-only: all
 	./$(APPDIR)/bench --mode kinematic
+
+# golden results (tests/golden/golden.sha256, checked by make test): rewrite them after a change
+# meant to move results, e.g. `make golden-update GOLDEN=dynamic` after a model change
+golden-update: all
+	@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/check_golden.sh --update $(GOLDEN)
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/selftalk $(DESTDIR)$(PREFIX)/lib/pkgconfig \

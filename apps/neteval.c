@@ -69,7 +69,7 @@ int main(int argc, char **argv) {
   if (st_genome_set_read(genome_path, st_arch_ngenes((stNetArch)arch), &set, err, sizeof err))
     app_die(prog, "%s", err);
   if (index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome_path, set.count);
-  stNetDef def = {cfg.network_lambda, cfg.network_gamma_a, cfg.network_gamma_b};
+  stNetDef def = st_net_def_from_config(&cfg);
   stNetParams params;
   if (st_net_decode(&def, (stNetArch)arch, &set.genome[index], &params, err, sizeof err))
     app_die(prog, "%s: %s", genome_path, err);

@@ -1,18 +1,23 @@
 /* SPDX-License-Identifier: MIT
  * replay: runs one trial of a saved genotype and writes its per-step trace (SPEC §9).
  *
- *   replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] [--generation G]
- *          [--index I] [--force OUT=VALUE[@STEP]]... [--set section.key=value]...
+ *   replay GENOME CONFIG --trial K [--out trace.csv] [--exact] [--stage simple|main]
+ *          [--generation G] [--index I] [--force OUT=VALUE[@STEP]]... [--set section.key=value]...
  *
  * Primitive stages: K = 0..15 (primitive K/4: reach, open, grasp, move; posture and object
  * position K%4). Integrated stage (a config with stage.stages = integrated): K = 0..
  * integrated.trials-1 (type K%4); the trial hears and is scored as that generation's plan says
- * (generation 0: the first generation's variant), and GENOME holds the config's network type.
+ * (generation 0: the first generation's variant).
+ * The genotypes are of network.arch's architecture: base for the primitive stages' runs, A or B
+ * for the integrated stage's; an A or B genotype also replays the primitive trials (without
+ * the secondary input).
  * --generation picks the trials' random offsets; --index the genotype of GENOME (a number, or
  * "last"). Without --index: in a file of per-generation bests (evolve's best.genome, whose
  * records carry "# generation G") the record of generation G, or the last record and its
  * generation when --generation is not given either; otherwise the first genotype (the best in
  * population.genome) with generation 0. Prints the genotype chosen and a one-line summary.
+ * --exact prints the trace's reals with 17 significant digits (they read back bit for bit: for
+ * comparing runs, and the golden results of tests/check_golden.sh) instead of 9.
  * --force overrides network output OUT (0..11 the DOF of SPEC §3, 12 focus) with VALUE (0..1)
  * from step STEP on (default 0): what the individual would do with, e.g., its thumb opposed.
  *
@@ -68,6 +73,7 @@ static stForce force_arg(const char *v) {
 typedef struct traceCtx {
   FILE *f;
   stNetArch arch;
+  int digits; /* significant digits of the trace's reals: 9, or 17 with --exact */
 } traceCtx;
 
 static void header(FILE *f) {
@@ -92,42 +98,51 @@ static void language(FILE *f, stNetArch arch, const stTraceStep *s) {
   }
 }
 
+static void real(const traceCtx *c, double x) { fprintf(c->f, ",%.*g", c->digits, x); }
+
 static void on_step(void *ctx, const stTraceStep *s) {
-  traceCtx *c = ctx;
+  const traceCtx *c = ctx;
   FILE *f = c->f;
   const stWorld *w = s->world;
   const stQuantities *q = s->q;
+  static const char *const events[] = {"", "end_success", "end_failure", "end_quiet"};
   fprintf(f, "%d", s->step);
-  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",%.9g", w->qhat[d]);
-  fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", q->palm[0], q->palm[1], q->palm[2],
-          w->obj[0], w->obj[1], w->obj[2], w->target[0], w->target[1], w->target[2]);
+  for (int d = 0; d < ST_NDOF; d++) real(c, w->qhat[d]);
+  const double *points[3] = {q->palm, w->obj, w->target};
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) real(c, points[i][k]);
   for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",%d", w->contacts.touch[i]);
-  fprintf(f, ",%.9g,%d", s->out[ST_NET_OUT_FOCUS], s->focus_target);
+  real(c, s->out[ST_NET_OUT_FOCUS]);
+  fprintf(f, ",%d", s->focus_target);
   for (int m = 0; m < ST_NET_NLING; m++) fprintf(f, ",%g", s->in[ST_NET_IN_LING + m]);
-  fprintf(f, ",%.9g,%.9g,%d,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", s->S, s->P, s->success_now,
-          s->event == ST_END_SUCCESS ? "end_success" : s->event == ST_END_FAILURE ? "end_failure"
-          : s->event == ST_END_QUIET ? "end_quiet" : "", q->d_r, q->d_g, q->d_m, q->d_mhat, q->h,
-          q->p, q->touching, q->lifted);
+  real(c, s->S);
+  real(c, s->P);
+  fprintf(f, ",%d,%s", s->success_now,
+          s->event >= ST_END_SUCCESS && s->event <= ST_END_QUIET ? events[s->event] : "");
+  const double dist[6] = {q->d_r, q->d_g, q->d_m, q->d_mhat, q->h, q->p};
+  for (int i = 0; i < 6; i++) real(c, dist[i]);
+  fprintf(f, ",%d,%d", q->touching, q->lifted);
   language(f, c->arch, s);
   fputc('\n', f);
 }
 
 static const char *const ENDS[] = {"full", "success", "failure", "quiet"};
 
-/* a primitive trial and its share of F_p (the primitive's N_p spans its four trials) */
+/* a primitive trial and its share of F_p (the primitive's N_p spans its four trials); traced
+ * into trace->f when not NULL */
 static void replay_primitive(const stProtocol *p, stStage stage, int generation, int index,
                              int trial, const stNetParams *np, const stForce *force, int nforce,
-                             FILE *f) {
+                             traceCtx *trace) {
   stTrialSpec t;
   st_trial_spec(p, stage, generation, trial, &t);
-  traceCtx ctx = {f, ST_ARCH_BASE};
+  trace->arch = np->arch;
   stWorkspace ws = {NULL, NULL};
   stTrialResult r;
   char err[1024];
   uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
                               (uint64_t)index, (uint64_t)trial).key;
-  if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, f ? on_step : NULL, &ctx, err,
-                          sizeof err))
+  if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, trace->f ? on_step : NULL,
+                          trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
   long n_p = 0;
@@ -146,18 +161,18 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
 /* an integrated trial: what it heard, how it ended, its bonus and points (eq. 2.14) and, for a
  * prediction trial, its prediction score (whether or not its object reached the target) */
 static void replay_integrated(const stProtocol *p, int generation, int index, int trial,
-                              const stNetParams *np, FILE *f) {
+                              const stNetParams *np, traceCtx *trace) {
   stIntegratedDef def;
   st_integrated_def_from_config(&p->cfg, &def);
   if (trial >= def.trials) app_die(prog, "--trial %d: expected 0..%d", trial, def.trials - 1);
-  traceCtx ctx = {f, def.arch};
+  trace->arch = np->arch;
   stWorkspace ws = {NULL, NULL};
   stIntPlan plan;
   stIntTrialResult r;
   stPredScore pred;
   char err[1024];
   if (st_int_trial_run(p, &def, &ws, generation, index, trial, np, &plan, &r, &pred,
-                       f ? on_step : NULL, &ctx, err, sizeof err))
+                       trace->f ? on_step : NULL, trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
   printf("trial %d integrated k=%d words=%s fitness=%s success=%d steps=%ld/%ld end=%s "
@@ -189,7 +204,7 @@ int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *genome = NULL, *out = NULL, *stage_name = NULL;
-  int trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0;
+  int trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0, digits = 9;
   stForce force[MAX_FORCE];
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
@@ -201,6 +216,7 @@ int main(int argc, char **argv) {
       force[nforce++] = force_arg(argv[++i]);
     }
     else if (!strcmp(a, "--stage") && i + 1 < argc) stage_name = argv[++i];
+    else if (!strcmp(a, "--exact")) digits = 17;
     else if (!strcmp(a, "--generation") && i + 1 < argc) generation = app_int_arg(prog, a, argv[++i], 0);
     else if (!strcmp(a, "--index") && i + 1 < argc) {
       if (!strcmp(argv[++i], "last")) index_last = 1;
@@ -212,8 +228,8 @@ int main(int argc, char **argv) {
     else app_die(prog, "unexpected argument '%s'", a);
   }
   if (!genome || !ca.config_path)
-    app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--stage simple|main] "
-                  "[--generation G] [--index I] [--force OUT=VALUE[@STEP]]...");
+    app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--exact] "
+                  "[--stage simple|main] [--generation G] [--index I] [--force OUT=VALUE[@STEP]]...");
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
   const int integrated = cfg.stage_stages == ST_STAGES_INTEGRATED;
@@ -231,10 +247,12 @@ int main(int argc, char **argv) {
     else if (!strcmp(stage_name, "main")) stage = ST_STAGE_MAIN;
     else app_die(prog, "--stage '%s': expected simple or main", stage_name);
   }
-  const stNetArch arch = integrated ? (stNetArch)cfg.network_arch : ST_ARCH_BASE;
+  /* network.arch: an integrated-stage genotype (type A or B) replays primitive trials too */
+  const stNetArch arch = (stNetArch)cfg.network_arch;
   char err[1024];
   stGenomeSet set;
-  if (st_genome_set_read(genome, st_arch_ngenes(arch), &set, err, sizeof err)) app_die(prog, "%s", err);
+  if (st_genome_set_read(genome, st_arch_ngenes(arch), &set, err, sizeof err))
+    app_die(prog, "%s (network.arch = %s)", err, st_arch_name(arch));
   if (index_last) index = set.count - 1;
   if (index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
   if (index < 0) index = pick_index(&set, genome, generation);
@@ -246,12 +264,12 @@ int main(int argc, char **argv) {
   stNetParams np;
   if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);
-  FILE *f = NULL;
-  if (out && !(f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
-  if (f) header(f);
-  if (integrated) replay_integrated(p, generation, index, trial, &np, f);
-  else replay_primitive(p, stage, generation, index, trial, &np, force, nforce, f);
-  if (f && fclose(f) != 0) app_die(prog, "%s: write error", out);
+  traceCtx trace = {NULL, arch, digits};
+  if (out && !(trace.f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
+  if (trace.f) header(trace.f);
+  if (integrated) replay_integrated(p, generation, index, trial, &np, &trace);
+  else replay_primitive(p, stage, generation, index, trial, &np, force, nforce, &trace);
+  if (trace.f && fclose(trace.f) != 0) app_die(prog, "%s: write error", out);
   st_protocol_destroy(p);
   return 0;
 }

@@ -44,6 +44,112 @@ static int section_known(const char *section) {
   return 0;
 }
 
+/* ---- keys only some stages read (config.h, "Which stages read which keys") ----
+ * One row per key (name "*": every key of the section; "prefix_*": every key whose name starts
+ * with prefix_) with the stages that read it and why the others do not; the first matching row
+ * counts. Checked against the code that reads each key: trial.c (trial lengths, table
+ * collision, early ends), fitness.c (eq. 2.12 and the penalty masks: the object-moving penalty
+ * is main-prim's), intscore.c and integrated.c (the integrated stage: eq. 2.14 is built on
+ * eq. 2.10-2.12, its penalty is table + object moving, its trials start from the reach postures
+ * and keep the table, its failures pay fitness.fail_penalty), assemble.c, caretaker.c,
+ * prediction.c, net.c (gamma: types A and B only), the dynamic world (main-prim, integrated). */
+#define S_ ST_CONFIG_SIMPLE_PRIM
+#define M_ ST_CONFIG_MAIN_PRIM
+#define I_ ST_CONFIG_INTEGRATED
+typedef struct stageKey {
+  const char *section, *name;
+  unsigned stages;
+  const char *why;
+} stageKey;
+static const stageKey g_stage_keys[] = {
+    {"network", "arch", I_, "the primitive stages evolve the base network, which the integrated "
+                            "stage grows into type A or B (thesis 2.9.2)"},
+    {"network", "gamma_a", I_, "the primitive stages' base network has no linguistic units (eq. 2.13)"},
+    {"network", "gamma_b", I_, "the primitive stages' base network has no linguistic units (eq. 2.13)"},
+    {"network", "typeb_init_gene", I_, "it initialises the type B block of genotypes the integrated stage grows"},
+    {"network", "secondary_input", I_, "the primitive stages never give the secondary input"},
+    {"ga", "mutation_rate", S_ | M_, "the integrated stage mutates at ga.mutation_rate_integrated"},
+    {"ga", "mutation_rate_integrated", I_, "the primitive stages mutate at ga.mutation_rate"},
+    {"ga", "success_genotypes", S_ | M_, "it ends the primitive stages"},
+    {"ga", "max_generations", S_ | M_, "it limits the primitive stages (the integrated stage: "
+                                       "ga.integrated_generations)"},
+    {"ga", "integrated_generations", I_, "it is the length of the integrated stage"},
+    {"robot", "alpha_dynamic", M_ | I_, "simple-prim runs in kinematic mode"},
+    {"stage", "init_population", S_ | M_, "the integrated stage starts from integrated.populations"},
+    {"stage", "primitives", S_ | M_, "the integrated stage's trials are not per primitive"},
+    {"stage", "simple_steps", S_, "it is the length of simple-prim trials"},
+    {"stage", "main_reach_steps", M_, "it is the length of main-prim reach trials"},
+    {"stage", "main_open_steps", M_, "it is the length of main-prim open trials"},
+    {"stage", "main_grasp_steps", M_, "it is the length of main-prim grasp trials"},
+    {"stage", "main_move_steps", M_, "it is the length of main-prim move trials"},
+    {"stage", "grasp_table_off_step", M_, "only main-prim grasp trials remove the table"},
+    {"stage", "move_table_off_step", M_, "only main-prim move trials remove the table"},
+    {"fitness", "penalty_object", S_ | M_, "the integrated stage's penalty is the table's and the "
+                                           "object-moving one (eq. 2.14)"},
+    {"fitness", "fp_min", S_ | M_, "only the primitive stages take the harmonic mean of F_p"},
+    {"fitness", "reach_hold_steps", M_, "only main-prim reach trials end early on success "
+                                        "(integrated trials: integrated.hold_steps)"},
+    {"fitness", "fail_penalty", M_ | I_, "simple-prim trials never end early on failure"},
+    {"fitness", "move_touch", M_ | I_, "eq. 2.12 scores main-prim move trials and the integrated "
+                                       "stage (simple-prim: eq. 2.8)"},
+    {"fitness", "move_lift", M_ | I_, "eq. 2.12 scores main-prim move trials and the integrated "
+                                      "stage (simple-prim: eq. 2.8)"},
+    {"fitness", "move_lift_dist", M_ | I_, "eq. 2.12 scores main-prim move trials and the "
+                                           "integrated stage (simple-prim: eq. 2.8)"},
+    {"fitness", "move_free", M_ | I_, "simple-prim has no object-moving penalty"},
+    {"fitness", "move_scale", M_ | I_, "simple-prim has no object-moving penalty"},
+    {"fitness", "move_max", M_ | I_, "simple-prim has no object-moving penalty"},
+    {"postures", "open_*", S_ | M_, "the integrated stage starts every trial from the reach postures"},
+    {"postures", "grasp_*", S_ | M_, "the integrated stage starts every trial from the reach postures"},
+    {"postures", "move_*", S_ | M_, "the integrated stage starts every trial from the reach postures"},
+    {"caretaker", "*", I_, "the caretaker speaks in the integrated stage only"},
+    {"integrated", "*", I_, "it defines the integrated stage"},
+    {"prediction", "*", I_, "the prediction fitness scores integrated trials only"},
+    {"dynamics", "*", M_ | I_, "simple-prim runs in kinematic mode"},
+};
+/* the stages stage.stages names */
+static const struct {
+  const char *choice;
+  unsigned stages;
+} g_run_stages[] = {{"simple_prim", S_}, {"main_prim", M_}, {"prims", S_ | M_}, {"integrated", I_}};
+static const char *const g_stage_names[] = {"simple-prim", "main-prim", "integrated"};
+#undef S_
+#undef M_
+#undef I_
+
+/* a row's name: the key's name, "*" or a "prefix_*" */
+static int name_matches(const char *pattern, const char *name) {
+  const size_t n = strlen(pattern);
+  if (n && pattern[n - 1] == '*') return !strncmp(pattern, name, n - 1);
+  return !strcmp(pattern, name);
+}
+
+static const stageKey *stage_key(const stConfigKey *k) {
+  for (size_t i = 0; i < sizeof g_stage_keys / sizeof g_stage_keys[0]; i++) {
+    const stageKey *r = &g_stage_keys[i];
+    if (!strcmp(r->section, k->section) && name_matches(r->name, k->name)) return r;
+  }
+  return NULL;
+}
+
+unsigned st_config_key_stages(int i) {
+  const stConfigKey *k = st_config_key(i);
+  const stageKey *r = k ? stage_key(k) : NULL;
+  return r ? r->stages : ST_CONFIG_ALL_STAGES;
+}
+
+/* "simple-prim", "simple-prim and main-prim", "simple-prim, main-prim and integrated" */
+static void stage_list(unsigned stages, char *buf, size_t n) {
+  buf[0] = 0;
+  int left = 0;
+  for (int b = 0; b < 3; b++) left += (int)(stages >> b & 1u);
+  for (int b = 0; b < 3; b++)
+    if (stages >> b & 1u) {
+      strncat(buf, g_stage_names[b], n - strlen(buf) - 1);
+      if (--left) strncat(buf, left == 1 ? " and " : ", ", n - strlen(buf) - 1);
+    }
+}
+
 #define FIELD(cfg, k, T) ((T *)((char *)(cfg) + (k)->offset))
 #define CFIELD(cfg, k, T) ((const T *)((const char *)(cfg) + (k)->offset))
 
@@ -68,6 +174,13 @@ const char *st_config_enum_name(const char *section, const char *name, int value
   if (i < 0 || g_keys[i].type != ST_CFG_ENUM || choice_at(g_keys[i].choices, value, buf, sizeof buf))
     return "?";
   return buf;
+}
+
+unsigned st_config_run_stages(const stConfig *cfg) {
+  const char *name = st_config_enum_name("stage", "stages", cfg->stage_stages);
+  for (size_t i = 0; i < sizeof g_run_stages / sizeof g_run_stages[0]; i++)
+    if (!strcmp(g_run_stages[i].choice, name)) return g_run_stages[i].stages;
+  return 0;
 }
 
 void st_config_default(stConfig *cfg) {
@@ -300,6 +413,63 @@ stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz) {
   return ST_OK;
 }
 
+stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
+                                size_t errsz) {
+  const int i = st_config_find(section, name);
+  const stConfigKey *k = st_config_key(i);
+  if (!k || (k->type != ST_CFG_INT && k->type != ST_CFG_REAL)) {
+    st__errf(err, errsz, "%s.%s: not a numeric key of the key table", section, name);
+    return ST_ERR_ARG;
+  }
+  if (value >= k->min && value <= k->max) return ST_OK;
+  char exp[128];
+  expected(k, exp, sizeof exp);
+  st__errf(err, errsz, "%s.%s: %g is out of range (expected %s)", section, name, value, exp);
+  return ST_ERR_RANGE;
+}
+
+static int is_default(const stConfig *c, const stConfig *d, const stConfigKey *k) {
+  switch (k->type) {
+    case ST_CFG_REAL: return *CFIELD(c, k, double) == *CFIELD(d, k, double);
+    case ST_CFG_STR: return !strcmp(CFIELD(c, k, char), CFIELD(d, k, char));
+    default: return *CFIELD(c, k, int) == *CFIELD(d, k, int);
+  }
+}
+
+static void format_value(const stConfig *cfg, const stConfigKey *k, char *buf, size_t n);
+
+/* the shortest text that reads back as v (0.005, not 0.0050000000000000001), for people */
+static void short_real(double v, char *buf, size_t n) {
+  for (int p = 6; p <= 17; p++) {
+    snprintf(buf, n, "%.*g", p, v);
+    if (strtod(buf, NULL) == v) return;
+  }
+}
+
+stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err, size_t errsz) {
+  stConfig d;
+  st_config_default(&d);
+  for (int i = 0; i < NKEYS; i++) {
+    const stConfigKey *k = &g_keys[i];
+    const stageKey *r = stage_key(k);
+    if (!r || (r->stages & stages) || is_default(cfg, &d, k)) continue;
+    char v[ST_CONFIG_STR_MAX + 32], dv[ST_CONFIG_STR_MAX + 32], readers[64], run[64];
+    format_value(cfg, k, v, sizeof v);
+    format_value(&d, k, dv, sizeof dv);
+    if (k->type == ST_CFG_REAL) {
+      short_real(*CFIELD(cfg, k, double), v, sizeof v);
+      short_real(*CFIELD(&d, k, double), dv, sizeof dv);
+    }
+    stage_list(r->stages, readers, sizeof readers);
+    stage_list(stages, run, sizeof run);
+    st__errf(err, errsz, "key '%s.%s': %s is read only by the %s stage%s, which this run (%s) does "
+             "not have: %s (expected the default, %s)", k->section, k->name, v, readers,
+             strstr(readers, " and ") ? "s" : "", run[0] ? run : "no stage", r->why, dv);
+    return ST_ERR_ARG;
+  }
+  return ST_OK;
+}
+
 /* ---- INI loading through inih ----
  * inih's handler gets no line number in Debian's build, so the file is fed through our own
  * reader, which counts lines, checks section names and strips '#' inline comments. */
@@ -525,8 +695,13 @@ void st_config_help(FILE *f) {
     const stConfigKey *k = &g_keys[i];
     char v[ST_CONFIG_STR_MAX + 32], exp[128];
     format_value(&d, k, v, sizeof v);
+    if (k->type == ST_CFG_REAL) short_real(*CFIELD(&d, k, double), v, sizeof v);
     expected(k, exp, sizeof exp);
-    fprintf(f, "%s.%s (%s, default %s; %s)\n    %s\n", k->section, k->name, tn[k->type], v, exp,
-            k->help);
+    const stageKey *r = stage_key(k);
+    char readers[64] = "";
+    if (r) stage_list(r->stages, readers, sizeof readers);
+    fprintf(f, "%s.%s (%s, default %s; %s)%s%s%s\n    %s\n", k->section, k->name, tn[k->type], v,
+            exp, r ? "; read by the " : "", readers,
+            r ? (strstr(readers, " and ") ? " stages only" : " stage only") : "", k->help);
   }
 }

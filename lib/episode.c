@@ -24,9 +24,7 @@ stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, si
   st_scene_from_config(cfg, &p->scene);
   st_sensor_def_from_config(cfg, &p->sensor);
   st_fitness_def_from_config(cfg, &p->fitness);
-  p->net.lambda = cfg->network_lambda;
-  p->net.gamma_a = cfg->network_gamma_a;
-  p->net.gamma_b = cfg->network_gamma_b;
+  p->net = st_net_def_from_config(cfg);
   p->primitives = st_config_primitive_mask(cfg);
   if ((st = st_postures_all(p->robot, &p->scene, p->posture, err, errsz))) {
     st_protocol_destroy(p);

@@ -20,6 +20,10 @@
 
 #define CKPT_MAGIC "selftalk-checkpoint 1"
 
+/* the primitive stages evolve the base network; network.arch names what the integrated stage
+ * grows it into (thesis 2.9.2), so a run without that stage refuses another value of it */
+static const stNetArch PRIM_ARCH = ST_ARCH_BASE;
+
 typedef struct run {
   const stEvolveDef *def;
   const stConfig *cfg;
@@ -153,7 +157,7 @@ static const char *stage_label(const run *R) {
 /* genotype i of the current generation: its fitness, or NAN and a message */
 static stStatus evaluate_one(run *R, stWorkspace *ws, int generation, int i, char *e, size_t n) {
   stNetParams np;
-  const stNetArch arch = R->integrated ? R->idef.arch : ST_ARCH_BASE;
+  const stNetArch arch = R->integrated ? R->idef.arch : PRIM_ARCH;
   stStatus st = st_net_decode(&R->proto->net, arch, st_ga_genome(R->ga, i), &np, e, n);
   if (!st && R->integrated)
     st = st_int_evaluate(R->proto, &R->idef, ws, generation, i, &np, &R->ieval[i], e, n);
@@ -267,7 +271,7 @@ static stStatus load_initial(run *R, stGenomeSet *set, char *err, size_t errsz) 
   const char *path = R->cfg->stage_init_population;
   memset(set, 0, sizeof *set);
   if (!path[0]) return ST_OK;
-  stStatus st = st_genome_set_read(path, ST_GENES_BASE, set, err, errsz);
+  stStatus st = st_genome_set_read(path, st_arch_ngenes(PRIM_ARCH), set, err, errsz);
   if (st) return st;
   if (set->count < R->cfg->ga_population) {
     st__errf(err, errsz, "stage.init_population: %s has %d genotypes (expected at least %d)", path,
@@ -297,13 +301,9 @@ static stStatus assemble_initial(run *R, stGenomeSet *set, char *err, size_t err
  * genotypes with only the new genes mutable at the integrated rate */
 static stStatus make_ga(run *R, const stGenome *pop0, int npop0, char *err, size_t errsz) {
   const stConfig *cfg = R->cfg;
-  stGaDef gd = st_ga_default_def();
-  gd.population = cfg->ga_population;
-  gd.elites = cfg->ga_elites;
-  gd.parents = cfg->ga_parents;
-  gd.mutation_rate = R->integrated ? cfg->ga_mutation_rate_integrated : cfg->ga_mutation_rate;
-  gd.seed = (uint64_t)cfg->run_seed;
-  gd.ngenes = R->integrated ? st_arch_ngenes(R->idef.arch) : ST_GENES_BASE;
+  stGaDef gd = st_ga_def_from_config(cfg);
+  if (R->integrated) gd.mutation_rate = cfg->ga_mutation_rate_integrated;
+  gd.ngenes = st_arch_ngenes(R->integrated ? R->idef.arch : PRIM_ARCH);
   uint8_t mask[ST_GENOME_MAX_GENES];
   st_genome_mask_new_genes(mask, gd.ngenes);
   return st_ga_create(&gd, pop0, npop0, R->integrated ? mask : NULL, &R->ga, err, errsz);
@@ -461,23 +461,29 @@ static stStatus generation(run *R, int *stop, char *err, size_t errsz) {
 
 /* ---- the run ---- */
 
-/* which stages, how many generations, how many threads */
-static void plan_run(run *R, const stEvolveDef *def) {
+/* which stages (every key acts in them or keeps its default), how many generations, how many
+ * threads */
+static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz) {
   const stConfig *cfg = def->cfg;
-  R->integrated = cfg->stage_stages == ST_STAGES_INTEGRATED;
-  st_integrated_def_from_config(cfg, &R->idef);
-  switch (cfg->stage_stages) {
-    case ST_STAGES_SIMPLE: R->stages[R->nstages++] = ST_STAGE_SIMPLE; break;
-    case ST_STAGES_MAIN: R->stages[R->nstages++] = ST_STAGE_MAIN; break;
-    case ST_STAGES_PRIMS:
-      R->stages[R->nstages++] = ST_STAGE_SIMPLE;
-      R->stages[R->nstages++] = ST_STAGE_MAIN;
-      break;
-    default: R->stages[R->nstages++] = ST_STAGE_MAIN; /* integrated: dynamic, like main-prim */
+  const unsigned stages = st_config_run_stages(cfg);
+  stStatus st = st_config_check_stages(cfg, stages, err, errsz);
+  if (st) return st;
+  /* the integrated stage runs alone (from the primitive stages' saved populations) */
+  R->integrated = stages == ST_CONFIG_INTEGRATED;
+  if (!stages || (!R->integrated && (stages & ST_CONFIG_INTEGRATED))) {
+    st__errf(err, errsz, "key 'stage.stages': %s is no stage sequence this program runs (expected "
+             "simple_prim, main_prim, prims or integrated)",
+             st_config_enum_name("stage", "stages", cfg->stage_stages));
+    return ST_ERR_ARG;
   }
+  if (stages & ST_CONFIG_SIMPLE_PRIM) R->stages[R->nstages++] = ST_STAGE_SIMPLE;
+  if (stages & ST_CONFIG_MAIN_PRIM) R->stages[R->nstages++] = ST_STAGE_MAIN;
+  if (R->integrated) R->stages[R->nstages++] = ST_STAGE_MAIN; /* dynamic, like main-prim */
+  st_integrated_def_from_config(cfg, &R->idef);
   const int cap = R->integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations;
   R->limit = def->generations > 0 ? def->generations : cap;
   R->threads = def->threads > 0 ? def->threads : cfg->run_threads > 0 ? cfg->run_threads : omp_get_num_procs();
+  return ST_OK;
 }
 
 /* the population to start from: the checkpoint's (resuming), else the stage's initial one;
@@ -555,7 +561,7 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   R.cfg = def->cfg;
   stStatus st = st_config_validate(def->cfg, err, errsz);
   if (st) return st;
-  plan_run(&R, def);
+  if ((st = plan_run(&R, def, err, errsz))) return st;
   if ((st = prepare_dir(&R, err, errsz))) return st;
   int have_ckpt = 0, done = 0;
   st = start_population(&R, &have_ckpt, &done, err, errsz);

@@ -17,39 +17,53 @@ struct stGa {
   uint8_t mask[ST_GENOME_MAX_GENES];
 };
 
-stGaDef st_ga_default_def(void) {
+stGaDef st_ga_def_from_config(const stConfig *cfg) {
   stGaDef d;
   memset(&d, 0, sizeof d);
-  d.population = 100;
-  d.elites = 10;
-  d.parents = 20;
-  d.mutation_rate = 0.005;
-  d.seed = 1;
-  d.ngenes = ST_GENES_BASE;
+  d.population = cfg->ga_population;
+  d.elites = cfg->ga_elites;
+  d.parents = cfg->ga_parents;
+  d.mutation_rate = cfg->ga_mutation_rate;
+  d.seed = (uint64_t)cfg->run_seed;
+  d.ngenes = st_arch_ngenes(ST_ARCH_BASE);
   d.first_generation = 0;
   return d;
+}
+
+stGaDef st_ga_default_def(void) {
+  stConfig c;
+  st_config_default(&c);
+  return st_ga_def_from_config(&c);
+}
+
+/* the fields that are keys within the key table's ranges, then what the algorithm needs */
+static stStatus check_def(const stGaDef *d, char *err, size_t errsz) {
+  stStatus st;
+  if ((st = st_config_check_number("ga", "population", d->population, err, errsz)) ||
+      (st = st_config_check_number("ga", "elites", d->elites, err, errsz)) ||
+      (st = st_config_check_number("ga", "parents", d->parents, err, errsz)) ||
+      (st = st_config_check_number("ga", "mutation_rate", d->mutation_rate, err, errsz)))
+    return st;
+  if (d->elites > d->population || d->parents > d->population) {
+    st__errf(err, errsz,
+             "GA sizes: population %d, elites %d, parents %d (expected elites <= population and "
+             "parents <= population)",
+             d->population, d->elites, d->parents);
+    return ST_ERR_ARG;
+  }
+  if (d->ngenes < 1 || d->ngenes > ST_GENOME_MAX_GENES) {
+    st__errf(err, errsz, "GA genes %d (expected 1..%d)", d->ngenes, ST_GENOME_MAX_GENES);
+    return ST_ERR_ARG;
+  }
+  return ST_OK;
 }
 
 stStatus st_ga_create(const stGaDef *def, const stGenome *init, int ninit, const uint8_t *mask,
                       stGa **out, char *err, size_t errsz) {
   *out = NULL;
   const stGaDef *d = def;
-  if (d->population < 1 || d->elites < 0 || d->parents < 1 || d->elites > d->population ||
-      d->parents > d->population) {
-    st__errf(err, errsz,
-             "GA sizes: population %d, elites %d, parents %d (expected 0 <= elites <= population "
-             "and 1 <= parents <= population)",
-             d->population, d->elites, d->parents);
-    return ST_ERR_ARG;
-  }
-  if (!(d->mutation_rate >= 0.0 && d->mutation_rate <= 1.0)) {
-    st__errf(err, errsz, "GA mutation rate %g (expected 0..1)", d->mutation_rate);
-    return ST_ERR_RANGE;
-  }
-  if (d->ngenes < 1 || d->ngenes > ST_GENOME_MAX_GENES) {
-    st__errf(err, errsz, "GA genes %d (expected 1..%d)", d->ngenes, ST_GENOME_MAX_GENES);
-    return ST_ERR_ARG;
-  }
+  stStatus st = check_def(d, err, errsz);
+  if (st) return st;
   if (init && ninit < d->population) {
     st__errf(err, errsz, "initial population has %d genotypes (expected at least %d)", ninit,
              d->population);

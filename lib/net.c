@@ -5,9 +5,15 @@
 #include "internal.h"
 #include "selftalk/net.h"
 
-stNetDef st_net_default_def(void) {
-  stNetDef d = {1.5, 1.0, 10.0};
+stNetDef st_net_def_from_config(const stConfig *cfg) {
+  stNetDef d = {cfg->network_lambda, cfg->network_gamma_a, cfg->network_gamma_b};
   return d;
+}
+
+stNetDef st_net_default_def(void) {
+  stConfig c;
+  st_config_default(&c);
+  return st_net_def_from_config(&c);
 }
 
 int st_net_ninputs(stNetArch arch) { return arch == ST_ARCH_BASE ? ST_NET_NIN : ST_NET_NIN + 1; }

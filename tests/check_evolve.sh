@@ -24,18 +24,9 @@ else
 fi
 if same_files "$tmp/t1" "$tmp/t2"; then ok "1 thread and 2 threads give bit-identical files"; else ko "thread independence"; fi
 
-# the episode loop (issue 14) left the primitive stage bit-identical: this fitness.csv was
-# pinned with the two loops it replaced. Any change to the simple-prim results must be
-# deliberate: update the hash in the same commit and say why. Updated for the hand of issue 12
-# (thumb base moved, fingers merged in pairs): the episode loop gave the same hash as the two
-# loops on this hand too (checked on the 22-hinge step of the hand, 97a02f19).
-"$EV" $cfg --seed 1 --generations 3 --threads 1 --out "$tmp/pin" > /dev/null 2>&1
-pin=8eeb3b0fbada72c41e49d892136c1aad160e9445e2b2b6d70b33da9d5aeb692d
-if [ "$(sha256sum < "$tmp/pin/fitness.csv" | cut -d' ' -f1)" = $pin ]; then
-  ok "simple-prim seed 1, 3 generations: fitness.csv as pinned before the episode loop"
-else
-  ko "pinned simple-prim fitness.csv" "$(sha256sum < "$tmp/pin/fitness.csv")"
-fi
+# The simple-prim results themselves are pinned once, by the golden result `evolution`
+# (tests/check_golden.sh, tests/golden/golden.sha256): the episode loop (issue 14) left them
+# bit-identical to the two loops it replaced, on the first hand and on the hand of issue 12.
 
 # replay: the best of the last generation, replayed trial by trial with the run's config and
 # that generation's offsets, reproduces its successes and (summing each trial's share) its fitness
@@ -149,5 +140,48 @@ else
   expect "unwritable DIR refused" "not writable" "$tmp/ro" "$EV" $cfg --out "$tmp/ro"
 fi
 expect "missing config refused" "$tmp/none.cfg: cannot open config" "$tmp/b3" "$EV" "$tmp/none.cfg" --out "$tmp/b3"
+# keys none of the run's stages reads are refused unless at their default (never silently
+# ignored): the integrated stage's keys in a primitive run, the dynamic world's in simple-prim
+expect "network.arch refused by the primitive stages" \
+  "key 'network.arch': A is read only by the integrated stage, which this run (simple-prim) does not have" \
+  "$tmp/b4" "$EV" $cfg --out "$tmp/b4" --set network.arch=A
+for kv in network.typeb_init_gene=1 ga.mutation_rate_integrated=0.05 ga.integrated_generations=7; do
+  expect "$kv refused by the primitive stages" "key '${kv%%=*}': ${kv#*=} is read only by the integrated stage" \
+    "$tmp/b5" "$EV" configs/prims.cfg --out "$tmp/b5" --set "$kv"
+done
+expect "a dynamics key refused by simple-prim" \
+  "key 'dynamics.gravity': 5 is read only by the main-prim and integrated stages" "$tmp/b6" \
+  "$EV" $cfg --out "$tmp/b6" --set dynamics.gravity=5
+expect "the hand's dynamics.kinematic_joints refused by simple-prim" \
+  "key 'dynamics.kinematic_joints': torso_pitch is read only by the main-prim and integrated stages" \
+  "$tmp/b7" "$EV" $cfg --out "$tmp/b7" --set dynamics.kinematic_joints=torso_pitch
+# and the primitive stages' keys in an integrated run (its trials start from the reach postures,
+# last integrated.steps, stop after ga.integrated_generations)
+expect "ga.max_generations refused by the integrated stage" \
+  "key 'ga.max_generations': 7 is read only by the simple-prim and main-prim stages, which this run (integrated) does not have" \
+  "$tmp/b8" "$EV" configs/integrated_ct.cfg --out "$tmp/b8" --set ga.max_generations=7
+expect "a grasp posture refused by the integrated stage" \
+  "key 'postures.grasp_partial_thumb_flex': 0.1 is read only by the simple-prim and main-prim stages" \
+  "$tmp/b9" "$EV" configs/integrated_st.cfg --out "$tmp/b9" --set postures.grasp_partial_thumb_flex=0.1
+
+# network.arch acts in replay: the base genotype is refused as type A (612 genes, 696 expected);
+# grown to type A with 84 random genes it replays trial 5 exactly as the base genotype, because
+# type A's linguistic cluster feeds nothing the motor outputs or the focus read (thesis 2.9.1)
+python3 - "$tmp/t1/best.genome" "$tmp/grown.genome" <<'PY'
+import random, sys
+last = [l.strip() for l in open(sys.argv[1]) if l.strip() and not l.startswith("#")][-1]
+r = random.Random(13)
+with open(sys.argv[2], "w") as f:
+    f.write("# genes 696\n" + last + "".join("%04x" % r.randrange(65536) for _ in range(84)) + "\n")
+PY
+"$APPDIR/replay" "$tmp/t1/best.genome" "$tmp/t1/config.ini" --trial 5 --set network.arch=A > /dev/null 2> "$tmp/ra1.err"; rc=$?
+"$APPDIR/replay" "$tmp/grown.genome" "$tmp/t1/config.ini" --trial 5 --generation $last --set network.arch=A \
+  > "$tmp/ra2.txt" 2> "$tmp/ra2.err"
+if [ $rc != 0 ] && grep -q "612 genes (expected 696) (network.arch = A)" "$tmp/ra1.err" &&
+   [ -s "$tmp/ra2.txt" ] && cmp -s "$tmp/ra2.txt" "$tmp/rb1.txt"; then
+  ok "replay reads network.arch: a base genotype refused as A; grown to A it replays the same trial"
+else
+  ko "replay network.arch" "$(cat "$tmp/ra1.err" "$tmp/ra2.err" "$tmp/ra2.txt")"
+fi
 echo "check_evolve: $pass passed, $fail failed"
 [ "$fail" = 0 ]

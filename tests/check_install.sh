@@ -20,9 +20,17 @@ for pc in selftalk selftalk-core; do
     ko "pkg-config $pc"
   fi
 done
-# the core must not pull the simulator in
-if LD_LIBRARY_PATH="$tmp/prefix/lib" ldd "$tmp/ex_selftalk-core" | grep -q libode; then
-  ko "selftalk-core links without ODE"
+# the core must not pull the simulator in: the example built against selftalk-core above must
+# exist, load the installed libselftalk-core, and load nothing of ODE or the full library
+core_ex="$tmp/ex_selftalk-core"
+if [ ! -x "$core_ex" ]; then
+  ko "selftalk-core links without ODE (the example against selftalk-core was not built)"
+elif ! libs=$(LD_LIBRARY_PATH="$tmp/prefix/lib" ldd "$core_ex" 2>&1); then
+  ko "selftalk-core links without ODE (ldd failed: $libs)"
+elif ! grep -q "libselftalk-core\.so\.0 => $tmp/prefix/lib/" <<<"$libs"; then
+  ko "selftalk-core links without ODE (the example does not load the installed core: $libs)"
+elif grep -qE 'libode|libselftalk\.so' <<<"$libs"; then
+  ko "selftalk-core links without ODE (it loads: $(grep -E 'libode|libselftalk\.so' <<<"$libs" | tr -s ' \t\n' ' '))"
 else
   ok "selftalk-core links without ODE"
 fi

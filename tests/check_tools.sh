@@ -56,8 +56,45 @@ python3 tools/plot_fitness.py "$t/a/fitness.csv" --from 100 >/dev/null 2>"$t/err
 printf 'gen,x\n1,2\n' >"$t/bad.csv"
 python3 tools/plot_fitness.py "$t/bad.csv" >/dev/null 2>"$t/err"; rc=$?
 [ $rc != 0 ] && grep -q "bad.csv: expected a fitness.csv" "$t/err" && ok "plot_fitness: wrong columns refused, naming the file" || bad "plot_fitness bad csv rc=$rc"
+# a config.ini beside fitness.csv sets the completion threshold: with 6, run c's main-prim
+# (at most 5 genotypes solving everything) is not complete, its simple-prim still at 1
+cp -r "$t/c" "$t/c6" && printf '[ga]\n# comment\nsuccess_genotypes = 6\n' > "$t/c6/config.ini"
+[ "$(python3 tools/runs_summary.py "$t/c6" | grep "^$t/c6," | cut -d, -f3-4)" = "1," ] &&
+  ok "runs_summary: ga.success_genotypes of config.ini" || bad "runs_summary threshold: $(python3 tools/runs_summary.py "$t/c6")"
 python3 tools/runs_summary.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
 [ $rc != 0 ] && grep -q "nope/fitness.csv" "$t/err" && ok "runs_summary: missing run refused, naming the file" || bad "runs_summary missing rc=$rc"
+# PNG (matplotlib, Debian's python3): a 1000-pixel-wide PNG; and without matplotlib a clear refusal
+PY=${PYTHON:-/usr/bin/python3}
+"$PY" tools/plot_fitness.py "$t/a/fitness.csv" -o "$t/a.png" >/dev/null 2>"$t/err"
+if [ "$("$PY" -c 'import struct, sys; d = open(sys.argv[1], "rb").read(24)
+print(d[:8] == b"\x89PNG\r\n\x1a\n", struct.unpack(">I", d[16:20])[0])' "$t/a.png" 2>&1)" = "True 1000" ]; then
+  ok "plot_fitness: PNG written (1000 px wide)"
+else
+  bad "plot_fitness PNG: $(cat "$t/err")"
+fi
+"$PY" -c 'import runpy, sys; sys.modules["matplotlib"] = None; sys.argv = sys.argv[1:]
+runpy.run_path(sys.argv[0], run_name="__main__")' tools/plot_fitness.py "$t/a/fitness.csv" -o "$t/b.png" \
+  >/dev/null 2>"$t/err"; rc=$?
+[ $rc != 0 ] && grep -q "b.png: PNG needs matplotlib" "$t/err" && [ ! -e "$t/b.png" ] &&
+  ok "plot_fitness: PNG without matplotlib refused, naming the fix" || bad "plot_fitness no matplotlib rc=$rc $(cat "$t/err")"
+# run_report (the end of make run): run a completes simple-prim at 2 (rows 0-2) and main-prim at
+# 5 (rows 3-5); its last best (generation 6) solves all but trial 15; the plot is drawn beside it
+out=$("$PY" tools/run_report.py "$t/a" 2>&1)
+if grep -qF "simple-prim: complete at generation 2 (5 genotypes solve every trial; 5 needed), after 3 generations" <<<"$out" &&
+   grep -qF "main-prim: complete at generation 5 (7 genotypes solve every trial; 5 needed), after 3 generations" <<<"$out" &&
+   grep -qF "(6, main-prim): fitness 9.00, solves 15/16 trials (reach 4/4, open 4/4, grasp 4/4, move 3/4)" <<<"$out" &&
+   grep -qF "redraw the plot: $PY tools/plot_fitness.py $t/a/fitness.csv -o $t/a/fitness.png" <<<"$out" &&
+   [ -s "$t/a/fitness.png" ]; then
+  ok "run_report: stage completions, the best's successes, the plot and its command"
+else
+  bad "run_report: $out"
+fi
+# with ga.success_genotypes = 9 simple-prim never completes (at most 5) and main-prim does at 6
+printf '[ga]\nsuccess_genotypes = 9\n' > "$t/a/config.ini"
+out=$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)
+grep -qF "simple-prim: not complete after 3 generations (at most 5 of the 9 genotypes needed" <<<"$out" &&
+  grep -qF "main-prim: complete at generation 6 (9 genotypes" <<<"$out" &&
+  ok "run_report: the threshold of config.ini" || bad "run_report threshold: $out"
 # grasp_probe --trace: a hand held 5 cm above the ball that never closes leaves it alone, so once
 # the table collision goes off after step 39 the ball free-falls by ODE's semi-implicit Euler,
 # g h^2 n (n + 1) / 2 after n sub-steps of h = 0.01 s: 0.01471 m after step 40 (n = 5), 0.05396 m

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT
  * CUnit runner: registers every suite (build/suites.inc), runs them, optionally only those
- * whose name contains argv[1], and exits non-zero on any failure. */
+ * whose name contains argv[1], and exits non-zero on any failure: a failed assertion, a suite
+ * that could not start, a test CUnit refused to register, or no test run at all. */
 #define _POSIX_C_SOURCE 200809L
 #include <CUnit/Basic.h>
 #include <stdio.h>
@@ -54,6 +55,25 @@ const char *st_test_tmpdir(char *path, size_t n) {
   return system(cmd) == 0 ? path : NULL;
 }
 
+static unsigned g_registration_errors;
+
+static void registration_check(const char *what, const char *name) {
+  if (CU_get_error() == CUE_SUCCESS) return;
+  fprintf(stderr, "test registration: %s '%s': %s\n", what, name, CU_get_error_msg());
+  g_registration_errors++;
+}
+
+CU_pSuite st_test_add_suite(const char *name) {
+  CU_pSuite s = CU_add_suite(name, NULL, NULL);
+  registration_check("suite", name);
+  return s;
+}
+
+void st_test_add(CU_pSuite suite, const char *name, CU_TestFunc fn) {
+  CU_add_test(suite, name, fn);
+  registration_check("test", name);
+}
+
 static stTestFixture g_fixture;
 static int g_fixture_loaded;
 
@@ -80,11 +100,17 @@ int main(int argc, char **argv) {
 #include "suites.inc"
 #undef SUITE
   CU_basic_set_mode(CU_BRM_VERBOSE);
-  CU_basic_run_tests();
-  unsigned failed = CU_get_number_of_tests_failed() + CU_get_number_of_failures() * 0;
-  unsigned run = CU_get_number_of_tests_run();
-  unsigned asserts_failed = CU_get_number_of_failures();
-  printf("\nunit tests: %u passed, %u failed\n", run - failed, failed);
+  const CU_ErrorCode run_error = CU_basic_run_tests();
+  const unsigned run = CU_get_number_of_tests_run();
+  const unsigned tests_failed = CU_get_number_of_tests_failed();
+  const unsigned asserts_failed = CU_get_number_of_failures(); /* includes suite set-up failures */
+  const unsigned suites_failed = CU_get_number_of_suites_failed();
+  /* failed checks: tests with a failed assertion, suites that could not run, tests never
+   * registered, and the run itself when nothing ran (a filter that matches nothing) */
+  const unsigned failed = tests_failed + suites_failed + g_registration_errors + (run == 0);
+  printf("\nunit tests: %u passed, %u failed (%u failed assertions%s%s)\n", run - tests_failed,
+         failed, asserts_failed, run == 0 ? "; no test ran" : "",
+         g_registration_errors ? "; registration errors above" : "");
   CU_cleanup_registry();
-  return (failed || asserts_failed) ? 1 : 0;
+  return (failed || asserts_failed || run_error != CUE_SUCCESS) ? 1 : 0;
 }

@@ -9,7 +9,8 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
 run_part() {
-  echo "== $1"
+  local name=$1
+  echo "== $name"
   shift
   "$@" 2>&1 | tee "$log"
   local rc=${PIPESTATUS[0]}
@@ -20,7 +21,10 @@ run_part() {
   f=$(echo "$line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\2/p')
   total_pass=$((total_pass + ${p:-0}))
   total_fail=$((total_fail + ${f:-0}))
-  if [ "$rc" != 0 ]; then
+  # a part that exits non-zero, or reports no passed check at all (it ran nothing, or its
+  # summary line is missing), fails
+  if [ "$rc" != 0 ] || [ "${p:-0}" = 0 ]; then
+    [ "$rc" = 0 ] && echo "run_all: '$name' reported no passed check: FAILED"
     parts_failed=$((parts_failed + 1))
     [ "${f:-0}" = 0 ] && total_fail=$((total_fail + 1))
   fi
@@ -34,6 +38,7 @@ run_part "evolve: threads, kill and resume, bad input" bash tests/check_evolve.s
 run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
 run_part "integrated stage: score, conditions, resume, threads, replay" bash tests/check_integrated.sh
 run_part "tools: run summaries and fitness plots" bash tests/check_tools.sh
+run_part "golden results (tests/golden/golden.sha256)" bash tests/check_golden.sh
 if [ "$BUILD" = build ]; then
   run_part "install + pkg-config" bash tests/check_install.sh
 fi

@@ -185,6 +185,156 @@ static void test_config_table(void) {
   CU_ASSERT_PTR_NULL(st_config_key(-1));
 }
 
+/* which stages read a key: the primitive stages do not read the integrated stage's keys, nor
+ * simple-prim (kinematic) the dynamic world's; a run refuses such a key unless it is at its
+ * default (issue 13: no key silently ignored) */
+static void test_config_stage_keys(void) {
+  stConfig c;
+  char err[512];
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(st_config_run_stages(&c), ST_CONFIG_SIMPLE_PRIM); /* default: simple_prim */
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "stage.stages=main_prim", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_run_stages(&c), ST_CONFIG_MAIN_PRIM);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "stage.stages=prims", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_run_stages(&c), ST_CONFIG_SIMPLE_PRIM | ST_CONFIG_MAIN_PRIM);
+  c.stage_stages = ST_STAGES_INTEGRATED; /* st_config_set would need its populations too */
+  CU_ASSERT_EQUAL(st_config_run_stages(&c), ST_CONFIG_INTEGRATED);
+
+  const unsigned S = ST_CONFIG_SIMPLE_PRIM, M = ST_CONFIG_MAIN_PRIM, I = ST_CONFIG_INTEGRATED;
+  const unsigned ALL = ST_CONFIG_ALL_STAGES;
+  /* the integrated stage (lib/integrated.c, intscore.c) reads eq. 2.12 inside eq. 2.14, the
+   * object-moving penalty, fail_penalty and the dynamic world; not the grasp postures, the
+   * harmonic mean or the object-touching penalty. The issue-12 hand's keys: the dynamic
+   * world's and a grasp posture's. */
+  static const struct {
+    const char *section, *name;
+    unsigned stages;
+  } rows[] = {
+      {"network", "arch", I}, {"network", "typeb_init_gene", I}, {"network", "gamma_a", I},
+      {"network", "lambda", ALL}, {"ga", "mutation_rate_integrated", I},
+      {"ga", "integrated_generations", I}, {"ga", "mutation_rate", S | M},
+      {"dynamics", "gravity", M | I}, {"stage", "simple_steps", S},
+      {"stage", "init_population", S | M}, {"fitness", "move_touch", M | I},
+      {"fitness", "move_free", M | I}, {"fitness", "fail_penalty", M | I},
+      {"fitness", "reach_hold_steps", M}, {"fitness", "fp_min", S | M},
+      {"fitness", "penalty_object", S | M}, {"fitness", "penalty_table", ALL},
+      {"integrated", "steps", I}, {"prediction", "window", I}, {"caretaker", "first_step", I},
+      {"dynamics", "kinematic_joints", M | I}, {"dynamics", "table_friction", M | I},
+      {"postures", "grasp_partial_thumb_flex", S | M}, {"postures", "reach_clearance", ALL},
+  };
+  for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
+    const unsigned got = st_config_key_stages(st_config_find(rows[i].section, rows[i].name));
+    if (got != rows[i].stages)
+      fprintf(stderr, "%s.%s: stages %u (expected %u)\n", rows[i].section, rows[i].name, got,
+              rows[i].stages);
+    CU_ASSERT_EQUAL(got, rows[i].stages);
+  }
+  /* every row of the table names a real key: 30 single keys plus the caretaker, integrated,
+   * prediction and dynamics sections and the open, grasp and move postures, counted here from
+   * the key table itself */
+  int restricted = 0, whole = 0;
+  for (int i = 0; i < st_config_nkeys(); i++) {
+    const stConfigKey *k = st_config_key(i);
+    restricted += st_config_key_stages(i) != ST_CONFIG_ALL_STAGES;
+    whole += !strcmp(k->section, "caretaker") || !strcmp(k->section, "integrated") ||
+             !strcmp(k->section, "prediction") || !strcmp(k->section, "dynamics") ||
+             (!strcmp(k->section, "postures") && strncmp(k->name, "reach_", 6));
+  }
+  CU_ASSERT_EQUAL(restricted, 30 + whole);
+
+  /* defaults pass every combination of stages */
+  st_config_default(&c);
+  for (unsigned st = 1; st <= ST_CONFIG_ALL_STAGES; st++)
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, st, err, sizeof err), ST_OK);
+  /* the integrated stage's keys: refused by the primitive stages, accepted by it */
+  static const char *const integrated[][2] = {
+      {"network.arch=A", "key 'network.arch': A is read only by the integrated stage, which this "
+                         "run (simple-prim and main-prim) does not have: the primitive stages "
+                         "evolve the base network"},
+      {"network.typeb_init_gene=1", "key 'network.typeb_init_gene': 1 is read only by the integrated stage"},
+      {"ga.mutation_rate_integrated=0.05", "key 'ga.mutation_rate_integrated': 0.05 is read only by "
+                                            "the integrated stage"},
+      {"ga.integrated_generations=7", "key 'ga.integrated_generations': 7 is read only by the integrated stage"},
+      {"caretaker.first_step=2", "key 'caretaker.first_step': 2 is read only by the integrated stage"},
+      {"integrated.steps=30", "key 'integrated.steps': 30 is read only by the integrated stage"},
+      {"prediction.window=10", "key 'prediction.window': 10 is read only by the integrated stage"},
+      {"network.gamma_b=7", "key 'network.gamma_b': 7 is read only by the integrated stage"},
+  };
+  for (size_t i = 0; i < sizeof integrated / sizeof integrated[0]; i++) {
+    st_config_default(&c);
+    CU_ASSERT_EQUAL_FATAL(st_config_set(&c, integrated[i][0], err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, S | M, err, sizeof err), ST_ERR_ARG);
+    ST_ASSERT_CONTAINS(err, integrated[i][1]);
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, I, err, sizeof err), ST_OK);
+  }
+  /* stage-specific keys of the primitive stages */
+  st_config_default(&c);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "dynamics.gravity=5", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'dynamics.gravity': 5 is read only by the main-prim and integrated "
+                          "stages, which this run (simple-prim) does not have: simple-prim runs in "
+                          "kinematic mode (expected the default, 9.81)");
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S | M, err, sizeof err), ST_OK);
+  st_config_default(&c);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "stage.simple_steps=50", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, M, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'stage.simple_steps': 50 is read only by the simple-prim stage");
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_OK);
+  /* the primitive stages' keys: refused by the integrated stage, accepted by them */
+  static const char *const primitive[][2] = {
+      {"ga.max_generations=7", "key 'ga.max_generations': 7 is read only by the simple-prim and "
+                               "main-prim stages, which this run (integrated) does not have"},
+      {"ga.success_genotypes=2", "key 'ga.success_genotypes': 2 is read only by the simple-prim and main-prim stages"},
+      {"ga.mutation_rate=0.01", "key 'ga.mutation_rate': 0.01 is read only by the simple-prim and main-prim stages"},
+      {"stage.init_population=x.genome", "key 'stage.init_population': x.genome is read only by the "
+                                         "simple-prim and main-prim stages"},
+      {"fitness.fp_min=0.01", "key 'fitness.fp_min': 0.01 is read only by the simple-prim and main-prim stages"},
+      {"postures.grasp_partial_thumb_flex=0.1", "key 'postures.grasp_partial_thumb_flex': 0.1 is read "
+                                                "only by the simple-prim and main-prim stages, which "
+                                                "this run (integrated) does not have: the integrated "
+                                                "stage starts every trial from the reach postures "
+                                                "(expected the default, 0)"},
+  };
+  for (size_t i = 0; i < sizeof primitive / sizeof primitive[0]; i++) {
+    st_config_default(&c);
+    CU_ASSERT_EQUAL_FATAL(st_config_set(&c, primitive[i][0], err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, I, err, sizeof err), ST_ERR_ARG);
+    ST_ASSERT_CONTAINS(err, primitive[i][1]);
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, S | M, err, sizeof err), ST_OK);
+  }
+  st_config_default(&c);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "stage.main_move_steps=50", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, I, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'stage.main_move_steps': 50 is read only by the main-prim stage, "
+                          "which this run (integrated) does not have");
+  /* keys the integrated stage reads with main-prim: not refused by it */
+  st_config_default(&c);
+  const char *both[] = {"fitness.move_lift=0.2", "fitness.move_scale=0.2", "fitness.fail_penalty=2",
+                        "dynamics.table_friction=0.5", "robot.alpha_dynamic=50"};
+  CU_ASSERT_EQUAL_FATAL(st_config_set_all(&c, both, 5, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, I, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, M, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_ERR_ARG);
+  /* a key set to its default explicitly is not an error */
+  st_config_default(&c);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "network.arch=base", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "ga.mutation_rate_integrated=0.04", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_OK);
+}
+
+/* ranges live in the key table: code that builds its definitions checks them there */
+static void test_config_check_number(void) {
+  char err[256];
+  CU_ASSERT_EQUAL(st_config_check_number("ga", "population", 2, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("ga", "population", 1, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "ga.population: 1 is out of range (expected an integer in [2, 100000])");
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "gravity", 100, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "gravity", 101, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "dynamics.gravity: 101 is out of range (expected a number in [0, 100])");
+  CU_ASSERT_EQUAL(st_config_check_number("robot", "urdf", 1, err, sizeof err), ST_ERR_ARG);
+  CU_ASSERT_EQUAL(st_config_check_number("ga", "nope", 1, err, sizeof err), ST_ERR_ARG);
+}
+
 void st_suite_config(void) {
   ST_ADD_SUITE("config");
   ST_ADD_TEST(test_config_defaults);
@@ -193,4 +343,6 @@ void st_suite_config(void) {
   ST_ADD_TEST(test_config_errors);
   ST_ADD_TEST(test_config_set_errors);
   ST_ADD_TEST(test_config_table);
+  ST_ADD_TEST(test_config_stage_keys);
+  ST_ADD_TEST(test_config_check_number);
 }

@@ -454,17 +454,20 @@ static void det_trial(stWorld *w, int trial, detResult *out) {
   out->unstable = st_world_unstable(w);
 }
 
-static void run_threads(const char *const *set, int threads, detResult *res) {
-#pragma omp parallel num_threads(threads)
+/* returns the number of trials run (NDET unless a world could not be made) */
+static int run_threads(const char *const *set, int threads, detResult *res) {
+  int ran = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : ran)
   {
     stWorld *w = NULL;
 #pragma omp critical
     w = make_world(move_scene(), set);
 #pragma omp for schedule(dynamic, 1)
     for (int t = 0; t < NDET; t++)
-      if (w) det_trial(w, t, &res[t]);
+      if (w) det_trial(w, t, &res[t]), ran++;
     st_world_destroy(w);
   }
+  return ran;
 }
 
 /* the same trials on 1 and 2 threads (each its own world; on 2 threads the trials land on
@@ -476,8 +479,8 @@ static void test_determinism_threads(void) {
   const char *const *sets[2] = {NULL, quick};
   for (int v = 0; v < 2; v++) {
     detResult a[NDET], b[NDET];
-    run_threads(sets[v], 1, a);
-    run_threads(sets[v], 2, b);
+    CU_ASSERT_EQUAL_FATAL(run_threads(sets[v], 1, a), NDET);
+    CU_ASSERT_EQUAL_FATAL(run_threads(sets[v], 2, b), NDET);
     int same = 0;
     for (int t = 0; t < NDET; t++) same += memcmp(&a[t], &b[t], sizeof a[t]) == 0;
     CU_ASSERT_EQUAL(same, NDET);
@@ -566,13 +569,13 @@ static void test_reset_equals_fresh(void) {
 static void test_fuzz(void) {
   enum { TRIALS = 16, STEPS = 100 };
   const double tol = 5.0 * DEG;
-  int bad_nan = 0, bad_limit = 0, unstable = 0;
+  int bad_nan = 0, bad_limit = 0, unstable = 0, ran = 0;
   char reason[256] = "";
   const stRobot *r = robot();
   CU_ASSERT_PTR_NOT_NULL_FATAL(r);
   const stModel *m = r->model;
   double worst = 0; /* degrees beyond a range, all trials */
-#pragma omp parallel num_threads(2) reduction(+ : bad_nan, bad_limit, unstable)
+#pragma omp parallel num_threads(2) reduction(+ : bad_nan, bad_limit, unstable, ran)
   {
     stWorld *w = NULL;
     double *angle = malloc(sizeof(double) * (size_t)r->nbody);
@@ -580,7 +583,8 @@ static void test_fuzz(void) {
     w = make_world(move_scene(), NULL);
 #pragma omp for schedule(dynamic, 1)
     for (int trial = 0; trial < TRIALS; trial++) {
-      if (!w || !angle) continue;
+      if (!w || !angle) continue; /* counted below: every trial must run */
+      ran++;
       const int prim = trial % ST_NPRIM, k = (trial / ST_NPRIM) % ST_NPOSTURE, kind = trial % 3;
       double q[ST_NDOF];
       posture(move_scene(), prim, k, q);
@@ -622,6 +626,7 @@ static void test_fuzz(void) {
     st_world_destroy(w);
     free(angle);
   }
+  CU_ASSERT_EQUAL(ran, TRIALS);
   CU_ASSERT_EQUAL(bad_nan, 0);
   CU_ASSERT_EQUAL(bad_limit, 0);
   CU_ASSERT_EQUAL(unstable, 0);

@@ -33,6 +33,19 @@ static void test_ga_defaults(void) {
   CU_ASSERT_EQUAL(d.parents, 20);
   CU_ASSERT_DOUBLE_EQUAL(d.mutation_rate, 0.005, 0.0);
   CU_ASSERT_EQUAL(d.ngenes, 612);
+  CU_ASSERT_EQUAL(d.seed, 1);
+  CU_ASSERT_EQUAL(d.first_generation, 0);
+  /* from a config: its ga.* keys and run.seed */
+  stConfig c;
+  char err[256];
+  st_config_default(&c);
+  const char *sets[] = {"ga.population=30", "ga.elites=3", "ga.parents=6", "ga.mutation_rate=0.01",
+                        "run.seed=9", "ga.success_genotypes=2"};
+  CU_ASSERT_EQUAL_FATAL(st_config_set_all(&c, sets, 6, err, sizeof err), ST_OK);
+  d = st_ga_def_from_config(&c);
+  CU_ASSERT(d.population == 30 && d.elites == 3 && d.parents == 6 && d.seed == 9);
+  CU_ASSERT_DOUBLE_EQUAL(d.mutation_rate, 0.01, 0.0);
+  CU_ASSERT_EQUAL(d.ngenes, 612);
 }
 
 static void test_ga_elites_and_children(void) {
@@ -163,6 +176,16 @@ static void test_ga_create_errors(void) {
   d.elites = 200;
   CU_ASSERT_EQUAL(st_ga_create(&d, NULL, 0, NULL, &ga, err, sizeof err), ST_ERR_ARG);
   ST_ASSERT_CONTAINS(err, "elites 200");
+  /* the key table's ranges */
+  d = st_ga_default_def();
+  d.population = 1;
+  d.elites = d.parents = 1;
+  CU_ASSERT_EQUAL(st_ga_create(&d, NULL, 0, NULL, &ga, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "ga.population: 1 is out of range (expected an integer in [2, 100000])");
+  d = st_ga_default_def();
+  d.mutation_rate = 1.5;
+  CU_ASSERT_EQUAL(st_ga_create(&d, NULL, 0, NULL, &ga, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "ga.mutation_rate: 1.5 is out of range");
   d = st_ga_default_def();
   stGenome init[100];
   memset(init, 0, sizeof init);

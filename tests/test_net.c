@@ -188,6 +188,36 @@ static void test_typeb_feedback(void) {
   CU_ASSERT_DOUBLE_EQUAL(s.hidden[2], 0.5, 1e-15);
 }
 
+/* the network's constants come from the key table: the thesis's values by default (eq. 2.1:
+ * lambda 1.5; eq. 2.13: gamma 1 for type A, 10 for type B), the config's when set */
+static void test_net_def_from_config(void) {
+  stNetDef d = st_net_default_def();
+  CU_ASSERT_DOUBLE_EQUAL(d.lambda, 1.5, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(d.gamma_a, 1.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(d.gamma_b, 10.0, 0.0);
+  stConfig c;
+  char err[256];
+  st_config_default(&c);
+  const char *sets[] = {"network.lambda=2.5", "network.gamma_a=3", "network.gamma_b=7"};
+  CU_ASSERT_EQUAL_FATAL(st_config_set_all(&c, sets, 3, err, sizeof err), ST_OK);
+  d = st_net_def_from_config(&c);
+  CU_ASSERT_DOUBLE_EQUAL(d.lambda, 2.5, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(d.gamma_a, 3.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(d.gamma_b, 7.0, 0.0);
+  /* decoding with it: all-zero genes give weights -1, so with the zero input of step 0 every
+   * hidden unit sees -bias = +1: sigma(2.5 * 1) = 1 / (1 + e^-2.5) = 0.9241418199787566 */
+  stGenome g;
+  memset(&g, 0, sizeof g);
+  g.ngenes = 612;
+  stNetParams p;
+  CU_ASSERT_EQUAL_FATAL(st_net_decode(&d, ST_ARCH_BASE, &g, &p, err, sizeof err), ST_OK);
+  double in[25] = {0}, out[13];
+  stNetState s;
+  st_net_reset(&p, &s);
+  st_net_step(&p, &s, in, out);
+  CU_ASSERT_DOUBLE_EQUAL(s.hidden[0], 0.9241418199787566, 1e-15);
+}
+
 void st_suite_net(void) {
   ST_ADD_SUITE("net");
   ST_ADD_TEST(test_gene_decoding);
@@ -195,4 +225,5 @@ void st_suite_net(void) {
   ST_ADD_TEST(test_forward_pass);
   ST_ADD_TEST(test_leaky_unit);
   ST_ADD_TEST(test_typeb_feedback);
+  ST_ADD_TEST(test_net_def_from_config);
 }

@@ -9,8 +9,12 @@
 #include <stdio.h>
 #include <string.h>
 
-#define ST_ADD_SUITE(name) CU_pSuite st__suite = CU_add_suite(name, NULL, NULL)
-#define ST_ADD_TEST(fn) CU_add_test(st__suite, #fn, fn)
+/* A registration CUnit refuses (duplicate name, no suite) fails the run (tests/main.c): a test
+ * that is never registered must not pass silently. */
+#define ST_ADD_SUITE(name) CU_pSuite st__suite = st_test_add_suite(name)
+#define ST_ADD_TEST(fn) st_test_add(st__suite, #fn, fn)
+CU_pSuite st_test_add_suite(const char *name);
+void st_test_add(CU_pSuite suite, const char *name, CU_TestFunc fn);
 
 /* asserts that haystack contains needle, printing both when it does not */
 #define ST_ASSERT_CONTAINS(haystack, needle)                                          \

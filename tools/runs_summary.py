@@ -1,14 +1,32 @@
 #!/usr/bin/env python3
 """Summarises evolution runs: for each run directory (an `evolve --out DIR`), the generation at
-which each stage was completed (5 genotypes solving all 16 trials), the generations run, and
-the final best individual's successes per trial. Prints CSV (one row per run), then the median
-and quartiles of the completion generations, the thesis's summary statistics (§3.1).
+which each stage was completed (ga.success_genotypes of its config.ini, 5 by default, genotypes
+solving all 16 trials), the generations run, and the final best individual's successes per
+trial. Prints CSV (one row per run), then the median and quartiles of the completion
+generations, the thesis's summary statistics (§3.1).
 
     python3 tools/runs_summary.py runs/simple_prim-s1 runs/simple_prim-s2 ...
 """
 import csv
 import statistics
 import sys
+
+
+def success_genotypes(run_dir):
+    """ga.success_genotypes of the run's config.ini (a stage is complete when that many genotypes
+    solve all trials); 5, the thesis's, when the directory has no config.ini"""
+    section = None
+    try:
+        with open(run_dir + "/config.ini") as f:
+            for line in f:
+                line = line.split("#")[0].strip()
+                if line.startswith("["):
+                    section = line.strip("[]")
+                elif section == "ga" and line.replace(" ", "").startswith("success_genotypes="):
+                    return int(line.split("=", 1)[1])
+    except OSError:
+        pass
+    return 5
 
 
 def summarise(run_dir):
@@ -20,9 +38,9 @@ def summarise(run_dir):
         sys.exit("runs_summary: %s: %s" % (path, e.strerror))
     if not rows or "all_success" not in rows[0]:
         sys.exit("runs_summary: %s: expected the fitness.csv of apps/evolve (with all_success)" % path)
-    done = {}
+    done, need = {}, success_genotypes(run_dir)
     for r in rows:
-        if int(r["all_success"]) >= 5 and r["stage"] not in done:
+        if int(r["all_success"]) >= need and r["stage"] not in done:
             done[r["stage"]] = int(r["generation"])
     last = rows[-1]
     trials = "".join(last["best_t%d" % t] for t in range(16))

@@ -250,6 +250,33 @@ enum { ST_CFG_FIT_INTEGRATED = 0, ST_CFG_FIT_PREDICTION };
 /* Choice name of an ENUM key's value, e.g. st_config_enum_name("network", "arch", 1) = "A". */
 const char *st_config_enum_name(const char *section, const char *name, int value);
 
+/* Checks value against the range of the INT or REAL key section.name (the table is the one
+ * place ranges live): ST_OK, or ST_ERR_RANGE with "section.name: V is out of range (expected
+ * ...)". Code that builds its definitions without a stConfig (the GA, the dynamic world) checks
+ * the fields that are keys with this. */
+stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
+                                size_t errsz);
+
+/* ---- Which stages read which keys ----
+ * Most keys are read by every stage. Those that only some stages read are listed in lib/config.c
+ * (stage_keys[]) with the stages that read them; an evolution run refuses a value other than
+ * the default for a key none of its stages reads (a key acts or is refused, never silently
+ * ignored). A stage that starts reading a key adds its bit to the key's row. */
+#define ST_CONFIG_SIMPLE_PRIM 1u /* the simple-prim stage (kinematic) */
+#define ST_CONFIG_MAIN_PRIM 2u   /* the main-prim stage (dynamic) */
+#define ST_CONFIG_INTEGRATED 4u  /* the integrated stage (thesis 2.9) */
+#define ST_CONFIG_ALL_STAGES 7u
+
+/* The stages (ST_CONFIG_* bits) that read key i; ST_CONFIG_ALL_STAGES for most keys. */
+unsigned st_config_key_stages(int i);
+
+/* The stages stage.stages names, as ST_CONFIG_* bits. */
+unsigned st_config_run_stages(const stConfig *cfg);
+
+/* Refuses (ST_ERR_ARG, naming the key, its value, the stages that read it and why) a key whose
+ * value is not its default when none of `stages` reads it. */
+stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err, size_t errsz);
+
 #ifdef __cplusplus
 }
 #endif

@@ -13,23 +13,30 @@
 #include <stdint.h>
 
 #include "selftalk/base.h"
+#include "selftalk/config.h"
 #include "selftalk/genome.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Definition of a GA; fill with st_ga_default_def() and change what you need. */
+/* Definition of a GA; fill with st_ga_def_from_config() or st_ga_default_def() and change what
+ * you need. The fields that are keys are checked against the key table's ranges. */
 typedef struct stGaDef {
-  int population;       /* genotypes per generation; 100 */
-  int elites;           /* best genotypes copied unchanged; 10 */
-  int parents;          /* best genotypes that breed; 20 (children round-robin over them) */
-  double mutation_rate; /* probability of flipping each mutable bit; 0.005 */
-  uint64_t seed;        /* run seed: keys every random stream */
-  int ngenes;           /* genes per genotype; 612 */
-  int first_generation; /* number of the initial generation; 0 */
+  int population;       /* genotypes per generation (ga.population) */
+  int elites;           /* best genotypes copied unchanged (ga.elites) */
+  int parents;          /* best genotypes that breed (ga.parents; children round-robin over them) */
+  double mutation_rate; /* probability of flipping each mutable bit (ga.mutation_rate) */
+  uint64_t seed;        /* run seed: keys every random stream (run.seed) */
+  int ngenes;           /* genes per genotype */
+  int first_generation; /* number of the initial generation */
 } stGaDef;
 
+/* The GA of cfg's primitive stages: its ga.* keys and run.seed, the base network's 612 genes,
+ * starting at generation 0. */
+stGaDef st_ga_def_from_config(const stConfig *cfg);
+/* The same with every key at its default (the thesis's GA: 100 genotypes, 10 elites, 20
+ * parents, rate 0.005). */
 stGaDef st_ga_default_def(void);
 
 typedef struct stGa stGa;

@@ -4,7 +4,8 @@
  * Model/data split as in MuJoCo: stNetParams is decoded once from a genotype, immutable and
  * shareable by any number of threads; stNetState holds the per-trial activations and the
  * leaky units' memory. Both are fixed-size values: no allocation anywhere in this module,
- * which depends on nothing but libm (link it into a robot controller alone).
+ * which depends on nothing but libm and the config key table of the core (link it into a robot
+ * controller alone).
  *
  * Inputs (25, or 26 for types A and B): 0-11 proprioception, 12-17 touch, 18-20 focus
  * vector, 21-24 linguistic input (reach, open, grasp, move), 25 secondary linguistic input.
@@ -14,19 +15,23 @@
 #define SELFTALK_NET_H
 
 #include "selftalk/base.h"
+#include "selftalk/config.h"
 #include "selftalk/genome.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Protocol constants of the network; st_net_default_def() gives the thesis's values. */
+/* Protocol constants of the network: keys network.lambda, gamma_a, gamma_b. */
 typedef struct stNetDef {
-  double lambda;  /* sigmoid slope: sigma(x) = 1 / (1 + exp(-lambda x)); 1.5 */
-  double gamma_a; /* gain of type A linguistic outputs; 1 */
-  double gamma_b; /* gain of type B hidden-linguistic units; 10 */
+  double lambda;  /* sigmoid slope: sigma(x) = 1 / (1 + exp(-lambda x)) */
+  double gamma_a; /* gain of type A linguistic outputs */
+  double gamma_b; /* gain of type B hidden-linguistic units */
 } stNetDef;
 
+/* The network keys of cfg. */
+stNetDef st_net_def_from_config(const stConfig *cfg);
+/* The keys' defaults (the thesis's values, from the key table). */
 stNetDef st_net_default_def(void);
 
 /* Parameters decoded from a genotype (weights in [-1, 1], decays in [0, 1]). */
