@@ -321,6 +321,7 @@ static void test_forced_outputs(void) {
 static void test_primitive_subset(void) {
   stConfig c;
   st_config_default(&c);
+  c.run_seed = 3; /* the run that evolved data/evolved/simple_prim_s3.genome */
   stProtocol *full = NULL, *grasp = NULL, *two = NULL;
   char err[512] = "";
   CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &full, err, sizeof err), ST_OK);
@@ -332,12 +333,11 @@ static void test_primitive_subset(void) {
   CU_ASSERT_EQUAL(grasp->primitives, 1u << ST_PRIM_GRASP);
   CU_ASSERT_EQUAL(two->primitives, (1u << ST_PRIM_REACH) | (1u << ST_PRIM_MOVE));
   stWorkspace ws = {0};
-  /* an evolved genotype (seed 3's simple-prim population: every F_p well above 0) and two
-   * random ones (most F_p negative, so the harmonic mean clamps them to fp_min). The population
-   * was evolved with the hand before 823117b (index and middle fingers one body per phalanx),
-   * which moved the kinematic touch sensors: its best, genotype 0, now misses grasp trial 9
-   * here; genotype 8 still solves all 16. Re-evolving simple_prim_s3 for the hand mends it. */
-  enum { EVOLVED = 8 };
+  /* an evolved genotype (the best of seed 3's simple-prim population, evolved with this hand:
+   * every F_p well above 0) and two random ones (most F_p negative, so the harmonic mean clamps
+   * them to fp_min), with the trial offsets of the generation at which that population was
+   * evaluated and its best solved all 16 (the last row of simple_prim_s3.fitness.csv) */
+  enum { EVOLVED = 0, GEN = 633 };
   stGenomeSet evolved;
   CU_ASSERT_EQUAL_FATAL(st_genome_set_read("data/evolved/simple_prim_s3.genome",
                                            st_arch_ngenes(ST_ARCH_BASE), &evolved, err, sizeof err), ST_OK);
@@ -349,9 +349,9 @@ static void test_primitive_subset(void) {
     stNetParams np;
     CU_ASSERT_EQUAL_FATAL(st_net_decode(NULL, ST_ARCH_BASE, &g, &np, err, sizeof err), ST_OK);
     stEvaluation ef, eg, e2;
-    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(full, &ws, ST_STAGE_SIMPLE, 5, ind, &np, &ef, err, sizeof err), ST_OK);
-    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(grasp, &ws, ST_STAGE_SIMPLE, 5, ind, &np, &eg, err, sizeof err), ST_OK);
-    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(two, &ws, ST_STAGE_SIMPLE, 5, ind, &np, &e2, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(full, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, &ef, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(grasp, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, &eg, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(two, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, &e2, err, sizeof err), ST_OK);
     CU_ASSERT_EQUAL(ef.ntrials, 16);
     CU_ASSERT_EQUAL(eg.ntrials, 4);
     CU_ASSERT_EQUAL(e2.ntrials, 8);
