@@ -366,6 +366,14 @@ def phalanx(f_, k, mass, tag):
     return cyl_seg(R_FINGER, [0, 0, 0], dh_end(a, d, off * D), mass, True, tag)
 
 fl = (0, 90)
+
+def flex_joint(hinged, name, parent, child, T, mimic, comment):
+    """A flexion joint of a finger or the thumb: a mimicking hinge, or welded straight (fixed)."""
+    if hinged:
+        add_joint(name, "revolute", parent, child, T, fl, FINGER_EFFORT, mimic=mimic, comment=comment)
+    else:
+        add_joint(name, "fixed", parent, child, T, comment=comment + ", welded straight to the phalanx before it")
+
 # thumb
 H = chain(T_hand_ee, trans(THUMB_SHIFT[0], -THUMB_SHIFT[1], 0.0), finger_H0("thumb"))  # palm y = -EE y
 # l_thumb_0: child of oppose (link 0, zero length) + the blocked metacarpal link 1 (fixed at 0)
@@ -382,18 +390,10 @@ add_joint("l_thumb_oppose", "revolute", "l_hand", "l_thumb_0", H, (0, 90), FINGE
           comment="iKin thumb link 0 (j8); origin = EE * H0_thumb")
 add_joint("l_thumb_proximal", "revolute", "l_thumb_0", "l_thumb_1", matmul(FC["thumb"][0], FC["thumb"][1]), fl, FINGER_EFFORT,
           comment="iKin thumb link 2 (j9); origin folds links 0 and 1 (link 1 blocked at 0)")
-if THUMB_HINGES >= 2:
-    add_joint("l_thumb_distal1", "revolute", "l_thumb_1", "l_thumb_2", FC["thumb"][2], fl, FINGER_EFFORT,
-              mimic="l_thumb_proximal", comment="iKin thumb link 3")
-else:
-    add_joint("l_thumb_distal1", "fixed", "l_thumb_1", "l_thumb_2", FC["thumb"][2],
-              comment="iKin thumb link 3, welded straight (one body with the proximal phalanx)")
-if THUMB_HINGES >= 3:
-    add_joint("l_thumb_distal2", "revolute", "l_thumb_2", "l_thumb_3", FC["thumb"][3], fl, FINGER_EFFORT,
-              mimic="l_thumb_proximal", comment="iKin thumb link 4")
-else:
-    add_joint("l_thumb_distal2", "fixed", "l_thumb_2", "l_thumb_3", FC["thumb"][3],
-              comment="iKin thumb link 4, welded straight (one body with the middle phalanx)")
+flex_joint(THUMB_HINGES >= 2, "l_thumb_distal1", "l_thumb_1", "l_thumb_2", FC["thumb"][2],
+           "l_thumb_proximal", "iKin thumb link 3")
+flex_joint(THUMB_HINGES >= 3, "l_thumb_distal2", "l_thumb_2", "l_thumb_3", FC["thumb"][3],
+           "l_thumb_proximal", "iKin thumb link 4")
 add_joint("l_thumb_tip_fixed", "fixed", "l_thumb_3", "l_thumb_tip", FC["thumb"][4])
 
 for f_ in ["index", "middle", "ring", "little"]:
@@ -414,12 +414,8 @@ for f_ in ["index", "middle", "ring", "little"]:
     for s in range(3):
         T = FC[f_][k0 + s - 1] if (s > 0 or has_abd) else H
         mim = None if (f_ == "index" and s == 0) else "l_index_proximal"
-        if s < FINGER_HINGES:
-            add_joint(jn[s], "revolute", par[s], "l_%s_%d" % (f_, s + 1), T, fl, FINGER_EFFORT, mimic=mim,
-                      comment="iKin %s link %d" % (f_, k0 + s))
-        else:
-            add_joint(jn[s], "fixed", par[s], "l_%s_%d" % (f_, s + 1), T,
-                      comment="iKin %s link %d, welded straight to the phalanx before it" % (f_, k0 + s))
+        flex_joint(s < FINGER_HINGES, jn[s], par[s], "l_%s_%d" % (f_, s + 1), T, mim,
+                   "iKin %s link %d" % (f_, k0 + s))
     add_joint("l_%s_tip_fixed" % f_, "fixed", "l_%s_3" % f_, "l_%s_tip" % f_, FC[f_][k0 + 2])
 
 def zero_pose(link):
