@@ -33,6 +33,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "model_internal.h"
 #include "ode_util.h"
 #include "selftalk/rng.h"
 #include "world_backend.h"
@@ -456,64 +457,36 @@ static stStatus create_scene(stWorld *w, dynInternal *d, char *err, size_t errsz
   return ST_OK;
 }
 
-/* 1 when name is one of the comma-separated names of list */
-static int name_listed(const char *list, const char *name) {
-  const size_t n = strlen(name);
-  for (const char *s = list; *s;) {
-    while (*s == ',' || *s == ' ') s++;
-    const size_t len = strcspn(s, ",");
-    size_t l = len;
-    while (l && s[l - 1] == ' ') l--;
-    if (l && l == n && !strncmp(s, name, n)) return 1;
-    s += len;
-  }
-  return 0;
-}
-
-/* how many comma-separated names list has */
-static int names_count(const char *list) {
-  int n = 0;
-  for (const char *s = list; *s;) {
-    while (*s == ',' || *s == ' ') s++;
-    if (*s) n++;
-    s += strcspn(s, ",");
-  }
-  return n;
-}
-
 /* dynamics.kinematic_joints: those hinges become exact servos (joint disabled, body kinematic).
- * Every listed name must be a hinge whose parent body is the static root or kinematic itself,
- * so that the kinematic bodies are the chain's first links and carry no dynamic parent. */
+ * They must be the chain's first hinges (hinges are in model order, parents first), so that
+ * every kinematic body's parent is the static root or kinematic itself. */
 static stStatus mark_kinematic(dynInternal *d, const stModel *m, char *err, size_t errsz) {
-  int found = 0;
-  for (int i = 0; i < d->nhinge; i++) {
-    dynHinge *hg = &d->hinge[i];
-    if (!name_listed(d->def.kinematic_joints, m->jnt_name[hg->link])) continue;
-    const int pg = d->link_group[m->body_parent[hg->link]];
-    if (pg >= 0 && !d->hinge[pg].kin) {
-      st__errf(err, errsz, "dynamics.kinematic_joints: joint '%s' follows the dynamic joint '%s' "
-               "(expected the first joints of the chain, parents before children)",
-               m->jnt_name[hg->link], m->jnt_name[d->hinge[pg].link]);
-      return ST_ERR_RANGE;
-    }
-    if (i != found) {
-      st__errf(err, errsz, "dynamics.kinematic_joints: joint '%s' is not among the chain's first "
-               "joints (expected a prefix of the chain)", m->jnt_name[hg->link]);
-      return ST_ERR_RANGE;
-    }
-    hg->kin = 1;
-    dJointDisable(hg->j);
-    dBodySetKinematic(d->gbody[i]);
-    found++;
-  }
-  const int listed = names_count(d->def.kinematic_joints);
-  if (found != listed) {
-    st__errf(err, errsz, "dynamics.kinematic_joints: '%s' names %d joints, %d of them hinges of "
-             "the model (expected names of revolute joints, each once)", d->def.kinematic_joints,
-             listed, found);
+  enum { MAX_KIN = 64 };
+  char names[MAX_KIN][ST_NAME_MAX];
+  const int n = st__split_names(d->def.kinematic_joints, names, MAX_KIN);
+  if (n < 0 || n > d->nhinge || n > MAX_KIN) {
+    st__errf(err, errsz, "dynamics.kinematic_joints: '%s' (expected at most the model's %d hinge "
+             "names, each shorter than %d characters)", d->def.kinematic_joints, d->nhinge,
+             ST_NAME_MAX);
     return ST_ERR_RANGE;
   }
-  d->nkin = found;
+  for (int k = 0; k < n; k++) {
+    const char *need = m->jnt_name[d->hinge[k].link];
+    int listed = 0;
+    for (int j = 0; j < n; j++) listed |= !strcmp(names[j], need);
+    if (!listed) {
+      st__errf(err, errsz, "dynamics.kinematic_joints: '%s' names %d joints but not '%s' "
+               "(expected the chain's first %d hinges, each once)", d->def.kinematic_joints, n,
+               need, n);
+      return ST_ERR_RANGE;
+    }
+  }
+  for (int k = 0; k < n; k++) {
+    d->hinge[k].kin = 1;
+    dJointDisable(d->hinge[k].j);
+    dBodySetKinematic(d->gbody[k]);
+  }
+  d->nkin = n;
   return ST_OK;
 }
 

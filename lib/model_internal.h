@@ -17,6 +17,10 @@ extern "C" {
  * Returns NULL on a bad count or when out of memory; free with st_model_destroy. */
 stModel *st__model_alloc(int nbody, int ngeom, int nvert, int ntri);
 
+/* Splits a config value "a, b,c" into at most max names (spaces around a name dropped);
+ * returns how many names the list has (possibly more than max), -1 if one is too long. */
+int st__split_names(const char *list, char names[][ST_NAME_MAX], int max);
+
 #ifdef __cplusplus
 }
 #endif

@@ -6,9 +6,9 @@
 #include <string.h>
 
 #include "internal.h"
+#include "model_internal.h"
 
-/* splits "a,b,c" into at most max names; returns the count, -1 if a name is too long */
-static int split_names(const char *list, char names[][ST_NAME_MAX], int max) {
+int st__split_names(const char *list, char names[][ST_NAME_MAX], int max) {
   int n = 0;
   const char *p = list;
   while (*p) {
@@ -68,7 +68,7 @@ stStatus st_robot_bind(stModel *m, const stConfig *cfg, const char *source, stRo
   r->body_is_arm = (uint8_t *)c;
 
   char names[ST_NDOF + 1][ST_NAME_MAX];
-  int n = split_names(cfg->robot_dof_joints, names, ST_NDOF + 1);
+  int n = st__split_names(cfg->robot_dof_joints, names, ST_NDOF + 1);
   if (n != ST_NDOF) {
     st__errf(err, errsz, "robot.dof_joints: %d names (expected %d comma-separated joint names)", n,
              ST_NDOF);
@@ -135,14 +135,14 @@ stStatus st_robot_bind(stModel *m, const stConfig *cfg, const char *source, stRo
   }
 
   char links[ST_NTOUCH + 1][ST_NAME_MAX];
-  n = split_names(cfg->robot_touch_links, links, ST_NTOUCH + 1);
+  n = st__split_names(cfg->robot_touch_links, links, ST_NTOUCH + 1);
   if (n != ST_NTOUCH) {
     st__errf(err, errsz, "robot.touch_links: %d names (expected %d)", n, ST_NTOUCH);
     goto fail;
   }
   for (int i = 0; i < ST_NTOUCH; i++)
     if ((r->touch_body[i] = need_link(m, links[i], "touch_links", source, err, errsz)) < 0) goto fail;
-  n = split_names(cfg->robot_tip_frames, links, ST_NTIP + 1);
+  n = st__split_names(cfg->robot_tip_frames, links, ST_NTIP + 1);
   if (n != ST_NTIP) {
     st__errf(err, errsz, "robot.tip_frames: %d names (expected %d)", n, ST_NTIP);
     goto fail;
