@@ -91,7 +91,8 @@ static int held_trial(stWorld *w, const stScene *scene, const double *q0, const 
   return !st_world_unstable(w) && w->obj[2] > scene->table_hi[2];
 }
 
-/* T held trials on the given threads; returns the elapsed time and counts the balls kept */
+/* T held trials on the given threads (trial t: move start t mod 4; with solver step the same
+ * start gives the same trajectory); returns the elapsed time and counts the balls kept */
 static double held_run(const stRobot *robot, const stScene *scene, const stDynDef *def,
                        double (*q0)[ST_NPOSTURE][ST_NDOF], int trials, int steps, int threads,
                        long *kept) {
@@ -109,6 +110,9 @@ static double held_run(const stRobot *robot, const stScene *scene, const stDynDe
                             steps, (uint64_t)t);
       }
       st_world_destroy(w);
+    } else {
+#pragma omp critical
+      fprintf(stderr, "%s: %s\n", prog, e);
     }
   }
   *kept += k_sum;

@@ -16,7 +16,8 @@
  * reaches its target velocity within one sub-step, and without contact none saturates: see
  * PROTOCOL), the robot's bodies are disabled and ODE steps the object alone. Near contact the
  * robot's bodies join ODE's step with the velocities the servos give them, and every sub-step
- * is ODE dynamics: hinge motors with bounded torque, stops, contacts.
+ * is ODE dynamics: hinge motors with bounded torque, stops, contacts; except for the joints of
+ * dynamics.kinematic_joints, exact servos at all times, whose links are kinematic bodies.
  *
  * Determinism: nothing here depends on anything but the world's own state: collisions are
  * run pair by pair in a fixed order (no ODE space, whose geom lists reorder as geoms move);
@@ -795,8 +796,7 @@ static void place_bodies(stWorld *w) {
 static void prescribe_velocities(stWorld *w, int only_kin) {
   dynInternal *d = w->internal_;
   const stModel *m = w->robot->model;
-  for (int g = 0; g < d->ngroup; g++) {
-    if (only_kin && !d->hinge[g].kin) continue;
+  for (int g = 0; g < (only_kin ? d->nkin : d->ngroup); g++) { /* the kinematic ones come first */
     const int pg = d->link_group[m->body_parent[d->glink[g]]];
     dVector3 a, anc;
     dJointGetHingeAxis(d->hinge[g].j, a);

@@ -10,6 +10,17 @@
 
 /* ---- protocol and workspace ---- */
 
+/* builds (and frees) one dynamic world: its settings are refused now, naming the key, not at
+ * the first dynamic trial, which may come after a whole simple-prim stage */
+static stStatus check_dynamics(const stProtocol *p, char *err, size_t errsz) {
+  stDynDef def;
+  st_dyn_def_from_config(&p->cfg, &def);
+  stWorld *w = NULL;
+  const stStatus st = st_world_create_dynamic(p->robot, &p->scene, &def, &w, err, errsz);
+  if (w) st_world_destroy(w);
+  return st;
+}
+
 stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, size_t errsz) {
   *out = NULL;
   stStatus st = st_config_validate(cfg, err, errsz);
@@ -26,7 +37,8 @@ stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, si
   st_fitness_def_from_config(cfg, &p->fitness);
   p->net = st_net_def_from_config(cfg);
   p->primitives = st_config_primitive_mask(cfg);
-  if ((st = st_postures_all(p->robot, &p->scene, p->posture, err, errsz))) {
+  if ((st = st_postures_all(p->robot, &p->scene, p->posture, err, errsz)) ||
+      (st = check_dynamics(p, err, errsz))) {
     st_protocol_destroy(p);
     return st;
   }

@@ -140,6 +140,10 @@ else
   expect "unwritable DIR refused" "not writable" "$tmp/ro" "$EV" $cfg --out "$tmp/ro"
 fi
 expect "missing config refused" "$tmp/none.cfg: cannot open config" "$tmp/b3" "$EV" "$tmp/none.cfg" --out "$tmp/b3"
+# a dynamic world that cannot be built is refused before simple-prim runs, not after it
+expect "bad dynamics.kinematic_joints refused before the first stage" \
+  "dynamics.kinematic_joints: 'l_elbow' names 1 joints but not 'torso_pitch'" "$tmp/b4" \
+  "$EV" configs/prims.cfg --out "$tmp/b4" --set dynamics.kinematic_joints=l_elbow
 # keys none of the run's stages reads are refused unless at their default (never silently
 # ignored): the integrated stage's keys in a primitive run, the dynamic world's in simple-prim
 expect "network.arch refused by the primitive stages" \

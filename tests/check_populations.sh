@@ -2,15 +2,17 @@
 # Every committed primitive run (data/evolved/prims_s<N>/) holds what its fitness.csv says: the
 # best genotype of its final population, replayed from the simulation with the run's own
 # config.ini on all 16 main-prim trials (with the offsets of its last generation), solves all
-# 16 (issue 12, item 4). A run directory without its three files is an error.
+# 16 (issue 12, item 4). A run directory without its three files is an error; snapshots of runs
+# still going (prims_s<N>_run/, resumable) are not finished runs and are left out.
 set -uo pipefail
 APPDIR=${APPDIR:-apps}
 pass=0 fail=0
 ok() { echo "ok   $1"; pass=$((pass + 1)); }
 bad() { echo "FAIL $1"; fail=$((fail + 1)); }
 
-runs=(data/evolved/prims_s*/)
-if [ ! -d "${runs[0]}" ]; then
+runs=()
+for d in data/evolved/prims_s*/; do case "$d" in *_run/) ;; *) runs+=("$d") ;; esac; done
+if [ ${#runs[@]} = 0 ] || [ ! -d "${runs[0]}" ]; then
   bad "no committed primitive run in data/evolved/prims_s*/ (expected at least one)"
 fi
 for d in "${runs[@]}"; do

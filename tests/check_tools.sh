@@ -134,8 +134,7 @@ fi
 "$gp" --hand 1,2,0 >/dev/null 2>"$t/err"; rc=$?
 [ $rc = 2 ] && grep -q "expected OPPOSE,THUMB,FINGERS, each in 0..1" "$t/err" && ok "grasp_probe: bad --hand refused" || bad "grasp_probe bad hand rc=$rc"
 # grasp_probe --basin: the default hand holds the ball in at least 10 % of the 720 closings
-# (issue 12's target; 84 when measured, data/README.md §3b), every hold line names its closing,
-# and the count is the same on 1 and 2 threads (each closing is its own world)
+# (issue 12's target; 84 when measured, data/README.md §3b) and every hold has its line
 OMP_NUM_THREADS=2 "$gp" --basin > "$t/basin2" 2>&1
 if awk '/^basin held=/ { split($2, h, "="); split($3, n, "="); held = h[2]; total = n[2] }
         /^held trial / { lines++ }

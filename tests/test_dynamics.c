@@ -189,9 +189,6 @@ static void test_collision_switch(void) {
 
 /* ---- the servos ---------------------------------------------------------------------------- */
 
-/* joint velocity law in free space (SPEC §3): far from the command a joint runs at 40 deg/s;
- * close to it at alpha (y - qhat) deg/s, re-evaluated every sub-step (a geometric decay over
- * the sub-steps). Both with free motion and with the robot in ODE's step all along. */
 /* dynamics.kinematic_joints (default: torso pitch and yaw, the three shoulder joints): inside
  * ODE's step (free motion off) those DOF follow the servo law of SPEC §3 exactly, computed
  * here sub-step by sub-step from the law itself: qhat += clamp(alpha (y - qhat), +-40) h /
@@ -246,6 +243,9 @@ static void test_kinematic_joints(void) {
   }
 }
 
+/* joint velocity law in free space (SPEC §3): far from the command a joint runs at 40 deg/s;
+ * close to it at alpha (y - qhat) deg/s, re-evaluated every sub-step (a geometric decay over
+ * the sub-steps). Both with free motion and with the robot in ODE's step all along. */
 static void test_velocity_law(void) {
   static const char *const full[] = {"dynamics.free_motion=false", NULL};
   double q[ST_NDOF];

@@ -3,7 +3,7 @@
 import math
 import os
 
-# Hand structure (data/README.md §hand): which phalanges are separate bodies. Environment
+# Hand structure (data/README.md §3b): which phalanges are separate bodies. Environment
 # overrides exist for the measurements recorded there; the defaults generate the shipped URDF.
 FINGER_HINGES = int(os.environ.get("ST_FINGER_HINGES", "3"))      # 3 = iKin (MCP, PIP, DIP); 2 = DIP welded straight
 THUMB_HINGES = int(os.environ.get("ST_THUMB_HINGES", "2"))        # flexing thumb hinges: 3 = iKin; 2 = distal welded

@@ -153,14 +153,15 @@ static int basin(const stProtocol *p, const probeOptions *o0) {
       stTrialSpec t;
       const stController c = {probe_reset, probe_act, ST_NET_NIN, &n, ST_NET_NOUT, 0};
       st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_GRASP * ST_NPOSTURE + k, &t);
-      if (st_trial_run_with(p, &ws, &t, &c, 1, &r, basin_trace, &n, err, sizeof err)) {
+      const int bad = st_trial_run_with(p, &ws, &t, &c, 1, &r, basin_trace, &n, err, sizeof err);
+      if (bad) {
 #pragma omp critical
         {
           fprintf(stderr, "grasp_probe: %s\n", err);
           fail = 1;
         }
       }
-      n.closing = r.success; /* reused: held */
+      n.closing = !bad && r.success; /* reused: held */
       res[i] = n;
     }
     st_workspace_free(&ws);
@@ -267,6 +268,10 @@ int main(int argc, char **argv) {
   if (st_protocol_create(&cfg, &p, err, sizeof err)) die("%s", err);
   stWorkspace ws = {NULL, NULL};
   int rc = 0;
+  if (do_basin && (trace || hand || o.dy != 0.0 || o.thumb_flex != 1.0 || o.finger_flex != 1.0 ||
+                   o.close_step != 30))
+    die("--basin sweeps its own offsets and closures (expected no --trace, --hand, --dy, "
+        "--thumb-flex, --finger-flex or --close-step with it)");
   if (do_basin) {
     rc = basin(p, &o);
   } else if (hand) {

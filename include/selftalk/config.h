@@ -146,7 +146,7 @@ extern "C" {
   REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \
   INT(dynamics, iterations, 20, 1, 1000, "quickstep solver iterations per sub-step") \
   REAL(dynamics, gravity, 9.81, 0.0, 100.0, "gravity, m/s^2 (downwards)") \
-  REAL(dynamics, friction, 2.0, 0.0, 100.0, "Coulomb friction coefficient of the robot's contacts (silicone-skinned hand; data/README.md, Hand)") \
+  REAL(dynamics, friction, 2.0, 0.0, 100.0, "Coulomb friction coefficient of the robot's contacts (silicone-skinned hand; data/README.md §3b)") \
   REAL(dynamics, table_friction, 1.0, 0.0, 100.0, "Coulomb friction coefficient of the object on the table and the floor") \
   REAL(dynamics, erp, 0.2, 0.0, 1.0, "error reduction parameter of joints and contacts") \
   REAL(dynamics, cfm, 1e-5, 0.0, 1.0, "constraint force mixing of joints and contacts") \

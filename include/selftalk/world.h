@@ -76,7 +76,9 @@ void st_world_point(const stWorld *w, int body, const double local[3], double ou
  * its flattened base, one body), a floor under the table, gravity and friction contacts. There
  * are no robot-robot collisions (as in iCub_SIM by default). While no robot part can reach
  * the table or the object within a sub-step, the robot moves kinematically by the servo law
- * (exactly what unsaturated servos do) and ODE steps only the object.
+ * (exactly what unsaturated servos do) and ODE steps only the object. The joints listed in
+ * dynamics.kinematic_joints (the chain's first ones) follow the servo law exactly at all times:
+ * their links are kinematic bodies, their torque unbounded.
  *
  * After every control step the same stWorld fields as in kinematic mode are filled: qhat
  * (joint readings clamped to [0, 1]; a coupled DOF reports the mean of its joints), R / p
