@@ -2,14 +2,9 @@
 # apps/evolve end to end: thread-count independence, SIGKILL + --resume giving identical files,
 # and bad input refused before any work.
 set -uo pipefail
-APPDIR=${APPDIR:-apps}
-EV="$APPDIR/evolve"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0 fail=0
-ok() { echo "check_evolve: $1 ok"; pass=$((pass + 1)); }
-ko() { echo "check_evolve: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
+CHECK=check_evolve
 source "$(dirname "$0")/check_lib.sh"
+EV="$APPDIR/evolve"
 cfg=configs/simple_prim.cfg
 G=8
 

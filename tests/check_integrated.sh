@@ -4,12 +4,7 @@
 # the same files on 1 and 2 threads; frozen genes never change; replay of an integrated
 # individual; bad integrated configs refused before any work.
 set -uo pipefail
-APPDIR=${APPDIR:-apps}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0 fail=0
-ok() { echo "check_integrated: $1 ok"; pass=$((pass + 1)); }
-ko() { echo "check_integrated: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
+CHECK=check_integrated
 source "$(dirname "$0")/check_lib.sh"
 
 # ---- score prediction: the perfect predictor and the late switch of tests/test_prediction.c,

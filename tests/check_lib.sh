@@ -1,4 +1,12 @@
-# Helpers shared by the check_*.sh scripts that run evolve (sourced; they define tmp, ok, ko).
+# Helpers shared by the check_*.sh scripts that run evolve. Sourced after setting CHECK to the
+# script's name: a temporary directory $tmp (removed on exit), the pass / fail counters and
+# ok NAME / ko NAME [DETAIL], which print "CHECK: NAME ok" or "CHECK: NAME FAILED: DETAIL".
+APPDIR=${APPDIR:-apps}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0 fail=0
+ok() { echo "$CHECK: $1 ok"; pass=$((pass + 1)); }
+ko() { echo "$CHECK: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
 
 # the five files of two run directories are identical
 same_files() { # DIR1 DIR2
