@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "internal.h"
@@ -64,6 +65,95 @@ size_t st__strlcpy(char *dst, const char *src, size_t n) {
     dst[c] = 0;
   }
   return len;
+}
+
+/* ---- bounded input ---- */
+
+/* "64 MiB" for whole mebibytes, else "N bytes" */
+static void size_text(size_t n, char *buf, size_t bufsz) {
+  if (n && n % ((size_t)1 << 20) == 0) snprintf(buf, bufsz, "%zu MiB", n >> 20);
+  else snprintf(buf, bufsz, "%zu bytes", n);
+}
+
+/* first buffer size: the file's size when it has one (a regular file), plus the end check */
+static size_t first_capacity(FILE *f, size_t max) {
+  struct stat sb;
+  size_t cap = 65536;
+  if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size >= 0 &&
+      (unsigned long long)sb.st_size < max)
+    cap = (size_t)sb.st_size + 2;
+  return cap < max + 2 ? cap : max + 2;
+}
+
+/* reads f into *buf until EOF or until it holds more than max bytes (too large); returns the
+ * bytes read, or (size_t)-1 on a read error or when out of memory (*enomem) */
+static size_t read_bounded(FILE *f, size_t max, char **buf, int *enomem) {
+  size_t cap = first_capacity(f, max), n = 0; /* cap <= max + 2: max + 1 bytes and a NUL */
+  if (!(*buf = malloc(cap))) return *enomem = 1, (size_t)-1;
+  for (;;) {
+    if (n + 1 == cap) { /* full (one byte kept for the NUL) */
+      if (n > max) return n;
+      size_t nc = cap <= (max + 2) / 2 ? 2 * cap : max + 2;
+      char *b = realloc(*buf, nc);
+      if (!b) return *enomem = 1, (size_t)-1;
+      *buf = b;
+      cap = nc;
+    }
+    size_t got = fread(*buf + n, 1, cap - 1 - n, f);
+    n += got;
+    if (got == 0) return ferror(f) ? (size_t)-1 : n;
+  }
+}
+
+stStatus st_file_read(const char *path, size_t max, char **data, size_t *len, char *err,
+                      size_t errsz) {
+  *data = NULL;
+  *len = 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    st__errf(err, errsz, "%s: cannot open: %s", path, strerror(errno));
+    return ST_ERR_IO;
+  }
+  char *buf = NULL;
+  int enomem = 0;
+  errno = 0;
+  size_t n = read_bounded(f, max, &buf, &enomem);
+  int e = errno;
+  fclose(f);
+  stStatus st = ST_OK;
+  char lim[32];
+  size_text(max, lim, sizeof lim);
+  if (enomem) {
+    st__errf(err, errsz, "%s: out of memory", path);
+    st = ST_ERR_NOMEM;
+  } else if (n == (size_t)-1) {
+    st__errf(err, errsz, "%s: cannot read: %s", path, strerror(e ? e : EIO));
+    st = ST_ERR_IO;
+  } else if (n > max) {
+    st__errf(err, errsz, "%s: larger than %s (expected an input file of at most %zu bytes)", path,
+             lim, max);
+    st = ST_ERR_RANGE;
+  }
+  if (st) {
+    free(buf);
+    return st;
+  }
+  buf[n] = 0;
+  *data = buf;
+  *len = n;
+  return ST_OK;
+}
+
+stStatus st_text_check(const char *name, const char *text, size_t len, char *err, size_t errsz) {
+  const char *nul = memchr(text, 0, len);
+  if (!nul) return ST_OK;
+  size_t line = 1, col = 1;
+  for (const char *p = text; p < nul; p++) {
+    col++;
+    if (*p == '\n') line++, col = 1;
+  }
+  st__errf(err, errsz, "%s:%zu: NUL byte at column %zu (expected a text file)", name, line, col);
+  return ST_ERR_PARSE;
 }
 
 stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t errsz) {

@@ -13,6 +13,8 @@
 
 #include "internal.h"
 #include "selftalk/genome.h"
+#include "selftalk/io.h"
+#include "readers.h"
 
 /* ---- the key table, generated from ST_CONFIG_KEYS ---- */
 
@@ -476,7 +478,7 @@ stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err,
 
 typedef struct loader {
   const char *path;
-  FILE *f;
+  const char *text, *end; /* the unread rest of the text */
   stConfig *cfg;
   int lineno;
   int line_of[MAX_KEYS]; /* line where each key was set, 0 = not set */
@@ -495,11 +497,30 @@ static void fail(loader *L, stStatus st, const char *fmt, const char *a, const c
   snprintf(L->msg, sizeof L->msg, "%s:%d: %s", L->path, L->lineno, tail);
 }
 
+/* the next line of the text (with its newline) into L->buf; -1 at the end */
+static int next_line(loader *L) {
+  if (L->text >= L->end) return -1;
+  const char *nl = memchr(L->text, '\n', (size_t)(L->end - L->text));
+  const size_t n = nl ? (size_t)(nl + 1 - L->text) : (size_t)(L->end - L->text);
+  if (n + 1 > L->cap) {
+    char *b = realloc(L->buf, n + 1);
+    if (!b) {
+      fail(L, ST_ERR_NOMEM, "out of memory%s%s%s", "", "", "");
+      return -1;
+    }
+    L->buf = b;
+    L->cap = n + 1;
+  }
+  memcpy(L->buf, L->text, n);
+  L->buf[n] = 0;
+  L->text += n;
+  return 0;
+}
+
 static char *reader(char *str, int num, void *stream) {
   loader *L = stream;
   if (L->status) return NULL; /* stop at the first error */
-  ssize_t len = getline(&L->buf, &L->cap, L->f);
-  if (len < 0) return NULL;
+  if (next_line(L)) return NULL;
   L->lineno++;
   char *p = L->buf;
   /* '#' starts a comment at line start (inih) or after whitespace (here) */
@@ -574,22 +595,17 @@ static int handler(void *user, const char *section, const char *name, const char
   return 1;
 }
 
-stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz) {
+stStatus st__config_parse(const char *name, const char *text, size_t len, stConfig *cfg,
+                          char *err, size_t errsz) {
+  stStatus st = st_text_check(name, text, len, err, errsz);
+  if (st) return st;
   loader L;
   memset(&L, 0, sizeof L);
-  L.path = path;
+  L.path = name;
+  L.text = text;
+  L.end = text + len;
   L.cfg = cfg;
-  L.f = fopen(path, "r");
-  if (!L.f) {
-    st__errf(err, errsz, "%s: cannot open config: %s", path, strerror(errno));
-    return ST_ERR_IO;
-  }
   int r = ini_parse_stream(reader, &L, handler, &L);
-  if (!L.status && ferror(L.f)) {
-    L.status = ST_ERR_IO;
-    snprintf(L.msg, sizeof L.msg, "%s: read error", path);
-  }
-  fclose(L.f);
   free(L.buf);
   if (!L.status && r > 0) {
     L.lineno = r;
@@ -605,6 +621,16 @@ stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz
   }
   if (L.status) st__errf(err, errsz, "%s", L.msg);
   return L.status;
+}
+
+stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz) {
+  char *text;
+  size_t len;
+  stStatus st = st_file_read(path, ST_FILE_MAX, &text, &len, err, errsz);
+  if (st) return st;
+  st = st__config_parse(path, text, len, cfg, err, errsz);
+  free(text);
+  return st;
 }
 
 static stStatus set_one(stConfig *cfg, const char *assignment, int cross, char *err, size_t errsz) {

@@ -10,6 +10,7 @@
 #include "internal.h"
 #include "selftalk/genome.h"
 #include "selftalk/io.h"
+#include "readers.h"
 
 const char *st_arch_name(stNetArch arch) {
   switch (arch) {
@@ -108,108 +109,158 @@ static int set_push(stGenomeSet *s, int *cap) {
   return 0;
 }
 
-stStatus st_genome_set_read(const char *path, int expect_genes, stGenomeSet *set, char *err,
-                            size_t errsz) {
-  memset(set, 0, sizeof *set);
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    st__errf(err, errsz, "%s: cannot open: %s", path, strerror(errno));
-    return ST_ERR_IO;
+/* the genome text parser: one line at a time, no NUL-terminated copy of the text needed */
+typedef struct gparse {
+  const char *name;
+  int lineno, expect, declared, pend_gen, cap;
+  size_t col0; /* columns before the trimmed line (messages count from the line's start) */
+  double pend_fit;
+  stGenomeSet *set;
+  char *err;
+  size_t errsz;
+} gparse;
+
+/* the next line of [*p, end) without surrounding white space (*col0 columns dropped before
+ * it); 0 at the end of the text */
+static int next_line(const char **p, const char *end, const char **s, size_t *n, size_t *col0) {
+  if (*p >= end) return 0;
+  const char *line = *p, *b = line;
+  const char *nl = memchr(line, '\n', (size_t)(end - line));
+  const char *e = nl ? nl : end;
+  *p = nl ? nl + 1 : end;
+  while (b < e && isspace((unsigned char)*b)) b++;
+  while (e > b && isspace((unsigned char)e[-1])) e--;
+  *s = b;
+  *n = (size_t)(e - b);
+  *col0 = (size_t)(b - line);
+  return 1;
+}
+
+/* the value of a "# key value" line as a C string; -1 if it is too long to be a number */
+static int meta_value(const char *v, size_t n, char *buf, size_t bufsz) {
+  while (n && isspace((unsigned char)*v)) v++, n--;
+  if (n >= bufsz) return -1;
+  memcpy(buf, v, n);
+  buf[n] = 0;
+  return 0;
+}
+
+/* "# genes N", "# fitness F", "# generation G"; any other '#' line is a comment */
+static stStatus parse_meta(gparse *g, const char *s, size_t n) {
+  size_t k = 1;
+  while (k < n && isspace((unsigned char)s[k])) k++;
+  const char *key = s + k;
+  size_t klen = 0;
+  while (k + klen < n && !isspace((unsigned char)key[klen])) klen++;
+  char val[64];
+  int bad = meta_value(key + klen, n - k - klen, val, sizeof val);
+  if (klen == 5 && !memcmp(key, "genes", 5)) {
+    int v;
+    if (bad || st__parse_int(val, &v) || (v != ST_GENES_BASE && v != ST_GENES_A && v != ST_GENES_B)) {
+      st__errf(g->err, g->errsz, "%s:%d: '# genes %.20s': bad gene count (expected 612, 696 or 756)",
+               g->name, g->lineno, bad ? "..." : val);
+      return ST_ERR_PARSE;
+    }
+    g->declared = v;
+  } else if (klen == 7 && !memcmp(key, "fitness", 7)) {
+    if (bad || st__parse_double(val, &g->pend_fit)) {
+      st__errf(g->err, g->errsz, "%s:%d: '# fitness %.20s': not a number (expected a finite number)",
+               g->name, g->lineno, bad ? "..." : val);
+      return ST_ERR_PARSE;
+    }
+  } else if (klen == 10 && !memcmp(key, "generation", 10)) {
+    if (bad || st__parse_int(val, &g->pend_gen) || g->pend_gen < 0) {
+      st__errf(g->err, g->errsz, "%s:%d: '# generation %.20s': not a generation (expected an "
+               "integer >= 0)", g->name, g->lineno, bad ? "..." : val);
+      return ST_ERR_PARSE;
+    }
   }
-  stStatus st = ST_OK;
-  int cap = 0, lineno = 0, declared = 0, pend_gen = -1;
-  double pend_fit = NAN;
-  char *line = NULL;
-  size_t linecap = 0;
-  ssize_t len;
-  while ((len = getline(&line, &linecap, f)) >= 0) {
-    lineno++;
-    while (len > 0 && isspace((unsigned char)line[len - 1])) line[--len] = 0;
-    char *p = line;
-    while (isspace((unsigned char)*p)) p++;
-    if (!*p) continue;
-    if (*p == '#') {
-      char key[32];
-      char val[64];
-      if (sscanf(p + 1, " %31s %63s", key, val) == 2) {
-        double v;
-        if (!strcmp(key, "genes")) {
-          int n;
-          if (st__parse_int(val, &n) || (n != ST_GENES_BASE && n != ST_GENES_A && n != ST_GENES_B)) {
-            st__errf(err, errsz, "%s:%d: '# genes %s': bad gene count (expected 612, 696 or 756)",
-                     path, lineno, val);
-            st = ST_ERR_PARSE;
-            break;
-          }
-          declared = n;
-        } else if (!strcmp(key, "fitness") && !st__parse_double(val, &v)) {
-          pend_fit = v;
-        } else if (!strcmp(key, "generation") && !st__parse_int(val, &pend_gen)) {
-        }
-      }
-      continue;
+  return ST_OK;
+}
+
+/* a genotype line's length and characters */
+static stStatus check_hex(const gparse *g, const char *s, size_t n, int *ngenes) {
+  for (size_t c = 0; c < n; c++)
+    if (hexval((unsigned char)s[c]) < 0) {
+      st__errf(g->err, g->errsz,
+               "%s:%d: genotype: non-hex character '%c' at column %zu (expected 4 lower-case hex "
+               "digits per gene)",
+               g->name, g->lineno, isprint((unsigned char)s[c]) ? s[c] : '?', g->col0 + c + 1);
+      return ST_ERR_PARSE;
     }
-    size_t n = strlen(p);
-    for (size_t c = 0; c < n; c++) {
-      if (hexval((unsigned char)p[c]) < 0) {
-        st__errf(err, errsz,
-                 "%s:%d: genotype: non-hex character '%c' at column %zu (expected 4 lower-case "
-                 "hex digits per gene)",
-                 path, lineno, isprint((unsigned char)p[c]) ? p[c] : '?', c + 1 + (size_t)(p - line));
-        st = ST_ERR_PARSE;
-        break;
-      }
-    }
-    if (st) break;
-    if (n % 4) {
-      st__errf(err, errsz,
-               "%s:%d: genotype: %zu hex digits is not a whole number of genes (truncated? "
-               "expected 4 hex digits per gene)",
-               path, lineno, n);
-      st = ST_ERR_PARSE;
-      break;
-    }
-    int ng = (int)(n / 4);
-    int want = expect_genes > 0 ? expect_genes : declared;
-    if (want ? ng != want : (ng != ST_GENES_BASE && ng != ST_GENES_A && ng != ST_GENES_B)) {
-      if (want)
-        st__errf(err, errsz, "%s:%d: genotype: %d genes (expected %d)", path, lineno, ng, want);
-      else
-        st__errf(err, errsz, "%s:%d: genotype: %d genes (expected 612, 696 or 756)", path, lineno,
-                 ng);
-      st = ST_ERR_PARSE;
-      break;
-    }
-    if (set_push(set, &cap)) {
-      st__errf(err, errsz, "%s: out of memory", path);
-      st = ST_ERR_NOMEM;
-      break;
-    }
-    stGenome *g = &set->genome[set->count];
-    memset(g, 0, sizeof *g);
-    g->ngenes = ng;
-    for (int i = 0; i < ng; i++) {
-      const char *q = p + 4 * i;
-      g->gene[i] = (uint16_t)((hexval(q[0]) << 12) | (hexval(q[1]) << 8) | (hexval(q[2]) << 4) |
+  if (n % 4) {
+    st__errf(g->err, g->errsz, "%s:%d: genotype: %zu hex digits is not a whole number of genes "
+             "(truncated? expected 4 hex digits per gene)", g->name, g->lineno, n);
+    return ST_ERR_PARSE;
+  }
+  const size_t ng = n / 4;
+  const int want = g->expect > 0 ? g->expect : g->declared;
+  if (want ? ng != (size_t)want : (ng != ST_GENES_BASE && ng != ST_GENES_A && ng != ST_GENES_B)) {
+    if (want)
+      st__errf(g->err, g->errsz, "%s:%d: genotype: %zu genes (expected %d)", g->name, g->lineno,
+               ng, want);
+    else
+      st__errf(g->err, g->errsz, "%s:%d: genotype: %zu genes (expected 612, 696 or 756)", g->name,
+               g->lineno, ng);
+    return ST_ERR_PARSE;
+  }
+  *ngenes = (int)ng;
+  return ST_OK;
+}
+
+static stStatus parse_genotype(gparse *g, const char *s, size_t n) {
+  int ng;
+  stStatus st = check_hex(g, s, n, &ng);
+  if (st) return st;
+  if (set_push(g->set, &g->cap)) {
+    st__errf(g->err, g->errsz, "%s: out of memory", g->name);
+    return ST_ERR_NOMEM;
+  }
+  stGenome *gen = &g->set->genome[g->set->count];
+  memset(gen, 0, sizeof *gen);
+  gen->ngenes = ng;
+  for (int i = 0; i < ng; i++) {
+    const char *q = s + 4 * i;
+    gen->gene[i] = (uint16_t)((hexval(q[0]) << 12) | (hexval(q[1]) << 8) | (hexval(q[2]) << 4) |
                               hexval(q[3]));
-    }
-    set->fitness[set->count] = pend_fit;
-    set->generation[set->count] = pend_gen;
-    set->count++;
-    pend_fit = NAN;
-    pend_gen = -1;
   }
-  free(line);
-  if (!st && ferror(f)) {
-    st__errf(err, errsz, "%s: read error", path);
-    st = ST_ERR_IO;
+  g->set->fitness[g->set->count] = g->pend_fit;
+  g->set->generation[g->set->count] = g->pend_gen;
+  g->set->count++;
+  g->pend_fit = NAN;
+  g->pend_gen = -1;
+  return ST_OK;
+}
+
+stStatus st__genome_set_parse(const char *name, const char *text, size_t len, int first_line,
+                              int expect_genes, stGenomeSet *set, char *err, size_t errsz) {
+  memset(set, 0, sizeof *set);
+  stStatus st = st_text_check(name, text, len, err, errsz);
+  if (st) return st;
+  gparse g = {name, first_line - 1, expect_genes, 0, -1, 0, 0, NAN, set, err, errsz};
+  const char *p = text, *s;
+  size_t n;
+  while (!st && next_line(&p, text + len, &s, &n, &g.col0)) {
+    g.lineno++;
+    if (n) st = *s == '#' ? parse_meta(&g, s, n) : parse_genotype(&g, s, n);
   }
-  fclose(f);
   if (!st && set->count == 0) {
-    st__errf(err, errsz, "%s: no genotype in file (expected at least one line of hex genes)", path);
+    st__errf(err, errsz, "%s: no genotype in file (expected at least one line of hex genes)", name);
     st = ST_ERR_PARSE;
   }
   if (st) st_genome_set_free(set);
+  return st;
+}
+
+stStatus st_genome_set_read(const char *path, int expect_genes, stGenomeSet *set, char *err,
+                            size_t errsz) {
+  memset(set, 0, sizeof *set);
+  char *text;
+  size_t len;
+  stStatus st = st_file_read(path, ST_FILE_MAX, &text, &len, err, errsz);
+  if (st) return st;
+  st = st__genome_set_parse(path, text, len, 1, expect_genes, set, err, errsz);
+  free(text);
   return st;
 }
 

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -27,11 +28,14 @@
 #include <assimp/scene.h>
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
+#include <sys/stat.h>
 
 extern "C" {
 #include "internal.h"
 }
 #include "model_internal.h"
+#include "readers.h"
+#include "selftalk/io.h"
 #include "selftalk/model.h"
 
 namespace {
@@ -82,16 +86,14 @@ class ConsoleGuard {
 
 // ---- files
 
+// the whole file through the library's bounded reader (selftalk/io.h)
 std::string read_file(const std::string &path) {
-  std::FILE *f = std::fopen(path.c_str(), "rb");
-  if (!f) fail(ST_ERR_IO, path + ": cannot open (" + std::strerror(errno) + ")");
-  std::string text;
-  char buf[65536];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
-  int bad = std::ferror(f), e = errno;
-  std::fclose(f);
-  if (bad) fail(ST_ERR_IO, path + ": cannot read (" + std::strerror(e) + ")");
+  char *data = nullptr, err[512];
+  size_t len = 0;
+  stStatus st = st_file_read(path.c_str(), ST_FILE_MAX, &data, &len, err, sizeof err);
+  if (st) fail(st, err);
+  std::string text(data, len);
+  std::free(data);
   return text;
 }
 
@@ -206,6 +208,115 @@ bool finite_pose(const urdf::Pose &p) {
          std::isfinite(r.z) && std::isfinite(r.w);
 }
 
+// ---- what the world can simulate (docs/PROTOCOL.md, "Robot model": the limits and why).
+// urdfdom parses numbers; these refuse the values that would abort libccd or ODE, or silently
+// give NaN, naming the file and the element.
+
+constexpr double kMaxOffset = 10.0;     // m: |xyz| of any origin (the arm spans ~1 m)
+constexpr double kMinSize = 1e-6;       // m: shape sizes (0 aborts libccd's cylinder)
+constexpr double kMaxSize = 10.0;       // m
+constexpr double kMaxMeshCoord = 100.0; // m: mesh vertices, scaled (catches millimetre meshes)
+constexpr double kMinScale = 1e-6, kMaxScale = 1e3;
+constexpr double kMinMass = 1e-6, kMaxMass = 1e3;  // kg (1e308 aborts ODE's dxNormalize4)
+constexpr double kMaxInertia = 1e3;     // kg m^2: principal moments
+constexpr double kTriangleTol = 1e-4;   // relative slack of the triangle inequality (rounding)
+constexpr double kMaxAngle = 2 * 3.14159265358979323846;  // rad: joint limits (degrees?)
+constexpr double kMaxEffort = 1e4;      // N m
+constexpr double kMaxVelocity = 1e3;    // rad/s
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }  // NaN: false
+
+std::string range(double lo, double hi, const char *unit) {
+  return num(lo) + ".." + num(hi) + " " + unit;
+}
+
+void check_origin(const std::string &what, const urdf::Pose &p) {
+  if (!finite_pose(p)) fail(ST_ERR_MODEL, what + ": origin is not finite");
+  const urdf::Vector3 &x = p.position;
+  if (!(std::hypot(x.x, x.y, x.z) <= kMaxOffset))
+    fail(ST_ERR_MODEL, what + ": origin xyz (" + num(x.x) + ", " + num(x.y) + ", " + num(x.z) +
+                           ") is farther than " + num(kMaxOffset) + " m (expected |xyz| <= " +
+                           num(kMaxOffset) + " m)");
+}
+
+void check_size(const std::string &what, const char *shape, const char *field, double v) {
+  if (!in_range(v, kMinSize, kMaxSize))
+    fail(ST_ERR_MODEL, what + ": " + shape + " " + field + " " + num(v) + " (expected " +
+                           range(kMinSize, kMaxSize, "m") + ")");
+}
+
+// sphere, box and cylinder sizes; meshes are checked once read
+void check_shape(const std::string &what, const urdf::Geometry &g) {
+  switch (g.type) {
+    case urdf::Geometry::SPHERE:
+      check_size(what, "sphere", "radius", static_cast<const urdf::Sphere &>(g).radius);
+      break;
+    case urdf::Geometry::BOX: {
+      const urdf::Vector3 &d = static_cast<const urdf::Box &>(g).dim;
+      check_size(what, "box", "size x", d.x);
+      check_size(what, "box", "size y", d.y);
+      check_size(what, "box", "size z", d.z);
+      break;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto &c = static_cast<const urdf::Cylinder &>(g);
+      check_size(what, "cylinder", "radius", c.radius);
+      check_size(what, "cylinder", "length", c.length);
+      break;
+    }
+    case urdf::Geometry::MESH: break;
+    default: fail(ST_ERR_MODEL, what + ": unknown geometry type");
+  }
+}
+
+void check_scale(const std::string &what, const urdf::Vector3 &s) {
+  for (double v : {s.x, s.y, s.z})
+    if (!in_range(std::fabs(v), kMinScale, kMaxScale))
+      fail(ST_ERR_MODEL, what + ": scale " + num(s.x) + " " + num(s.y) + " " + num(s.z) +
+                             " (expected each |scale| in " + range(kMinScale, kMaxScale, ")"));
+}
+
+// mass and inertia a rigid body can have: a mass in range, a finite symmetric tensor whose
+// principal moments are positive, bounded and obey the triangle inequality
+void check_inertial(const std::string &what, const urdf::Inertial &in, const Eigen::Matrix3d &I) {
+  if (!in_range(in.mass, kMinMass, kMaxMass))
+    fail(ST_ERR_MODEL, what + ": mass " + num(in.mass) + " kg (expected " +
+                           range(kMinMass, kMaxMass, "kg") + ")");
+  check_origin(what, in.origin);
+  if (!I.allFinite()) fail(ST_ERR_MODEL, what + ": inertia is not finite");
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I, Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d e = eig.eigenvalues();  // ascending
+  const std::string moments =
+      "principal moments " + num(e[0]) + ", " + num(e[1]) + ", " + num(e[2]) + " kg m^2";
+  if (!(e[0] > 0))
+    fail(ST_ERR_MODEL, what + ": inertia is not positive definite (" + moments +
+                           "; expected all > 0)");
+  if (!(e[2] <= kMaxInertia))
+    fail(ST_ERR_MODEL, what + ": inertia too large (" + moments + "; expected at most " +
+                           num(kMaxInertia) + " kg m^2)");
+  if (!(e[0] + e[1] >= e[2] * (1 - kTriangleTol)))
+    fail(ST_ERR_MODEL, what + ": inertia breaks the triangle inequality (" + moments +
+                           "; expected the largest <= the sum of the other two)");
+}
+
+void check_limits(const std::string &what, const urdf::JointLimits &lim, bool revolute) {
+  if (!in_range(lim.effort, 0, kMaxEffort) || !in_range(lim.velocity, 0, kMaxVelocity))
+    fail(ST_ERR_MODEL, what + ": limit effort " + num(lim.effort) + ", velocity " +
+                           num(lim.velocity) + " (expected effort in " +
+                           range(0, kMaxEffort, "N m") + ", velocity in " +
+                           range(0, kMaxVelocity, "rad/s") + ")");
+  if (revolute && !(in_range(lim.lower, -kMaxAngle, kMaxAngle) &&
+                    in_range(lim.upper, -kMaxAngle, kMaxAngle) && lim.lower <= lim.upper))
+    fail(ST_ERR_MODEL, what + ": limit lower " + num(lim.lower) + ", upper " + num(lim.upper) +
+                           " (expected radians in -2 pi..2 pi, lower <= upper)");
+}
+
 // ---- meshes
 
 struct MeshData {
@@ -223,6 +334,20 @@ const char *joint_type_name(int type) {
     case urdf::Joint::FIXED: return "fixed";
     default: return "unknown";
   }
+}
+
+// a clear message for the common case (assimp's own says little about errno), and the size
+// limit of every input file: assimp reads the file itself
+void probe_mesh_file(const std::string &what, const std::string &file) {
+  struct stat sb;
+  if (stat(file.c_str(), &sb) != 0)
+    fail(ST_ERR_IO, what + ": cannot read (" + file + ": " + std::strerror(errno) + ")");
+  if (!S_ISREG(sb.st_mode))
+    fail(ST_ERR_IO, what + ": cannot read (" + file + ": not a regular file)");
+  if (static_cast<unsigned long long>(sb.st_size) > ST_FILE_MAX)
+    fail(ST_ERR_RANGE, what + ": " + file + ": larger than " + std::to_string(ST_FILE_MAX >> 20) +
+                           " MiB (expected a mesh file of at most " + std::to_string(ST_FILE_MAX) +
+                           " bytes)");
 }
 
 // what: "FILE: link 'x': collision mesh 'y'"
@@ -243,13 +368,9 @@ MeshData load_mesh(const std::string &what, const std::string &urdf_dir, const u
   if (file.empty()) fail(ST_ERR_MODEL, what + ": empty filename");
   if (file[0] != '/') file = urdf_dir + "/" + file;
 
-  // a clear message for the common case (assimp's own says little about errno)
-  std::FILE *probe = std::fopen(file.c_str(), "rb");
-  if (!probe) fail(ST_ERR_IO, what + ": cannot read (" + file + ": " + std::strerror(errno) + ")");
-  std::fclose(probe);
-
+  probe_mesh_file(what, file);
   const urdf::Vector3 &s = mesh.scale;
-  if (!finite3(s)) fail(ST_ERR_MODEL, what + ": scale is not finite");
+  check_scale(what, s);
 
   Assimp::Importer importer;
   // geometry only: dropping normals etc. lets JoinIdenticalVertices merge by position
@@ -309,8 +430,11 @@ MeshData load_mesh(const std::string &what, const std::string &urdf_dir, const u
   }
   if (out.tri.empty()) fail(ST_ERR_MODEL, what + ": the mesh has no triangles");
   for (const auto &v : out.vert)
-    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-      fail(ST_ERR_MODEL, what + ": vertex coordinates are not finite");
+    if (!(std::hypot(v[0], v[1], v[2]) <= kMaxMeshCoord))
+      fail(ST_ERR_MODEL, what + ": vertex (" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) +
+                             ") is not finite or farther than " + num(kMaxMeshCoord) +
+                             " m from the origin (expected metres: a mesh in millimetres needs "
+                             "scale=\"0.001 0.001 0.001\")");
   return out;
 }
 
@@ -333,8 +457,12 @@ void check_name(const std::string &file, const char *kind, const std::string &na
                            std::to_string(ST_NAME_MAX - 1) + " characters");
 }
 
-ModelPtr load(const std::string &file) {
-  const std::string text = read_file(file);
+// file: the name messages give; dir: where relative mesh paths start
+ModelPtr load(const std::string &file, const std::string &dir, const std::string &text) {
+  if (text.find('\0') != std::string::npos) {
+    char err[512];
+    fail(st_text_check(file.c_str(), text.data(), text.size(), err, sizeof err), err);
+  }
 
   urdf::ModelInterfaceSharedPtr urdf_model;
   LogCapture capture;
@@ -416,7 +544,6 @@ ModelPtr load(const std::string &file) {
   // ---- collision geometry; meshes are read now, so the counts are known before allocating
   std::vector<GeomSrc> geoms;
   std::vector<MeshData> meshes;
-  const std::string dir = dir_of(file);
   size_t nvert = 0, ntri = 0;
   for (int b = 0; b < nbody; b++) {
     const urdf::Link *l = links[b];
@@ -427,7 +554,8 @@ ModelPtr load(const std::string &file) {
       k++;
       std::string what = file + ": link " + quote(l->name) + ": collision " + std::to_string(k);
       if (!c || !c->geometry) fail(ST_ERR_MODEL, what + ": no geometry");
-      if (!finite_pose(c->origin)) fail(ST_ERR_MODEL, what + ": origin is not finite");
+      check_origin(what, c->origin);
+      check_shape(what, *c->geometry);
       int mesh = -1;
       if (c->geometry->type == urdf::Geometry::MESH) {
         const auto &m = static_cast<const urdf::Mesh &>(*c->geometry);
@@ -459,12 +587,9 @@ ModelPtr load(const std::string &file) {
     if (l->inertial) {
       const urdf::Inertial &in = *l->inertial;
       std::string what = file + ": link " + quote(l->name) + ": inertial";
-      if (!std::isfinite(in.mass) || in.mass < 0)
-        fail(ST_ERR_MODEL, what + ": mass must be finite and >= 0");
-      if (!finite_pose(in.origin)) fail(ST_ERR_MODEL, what + ": origin is not finite");
       Eigen::Matrix3d inertia;
       inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-      if (!inertia.allFinite()) fail(ST_ERR_MODEL, what + ": inertia is not finite");
+      check_inertial(what, in, inertia);
       const urdf::Rotation &r = in.origin.rotation;
       Eigen::Matrix3d rot = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
       // the tensor is given in the inertial frame; body axes: R I R^T (kept exactly symmetric)
@@ -481,8 +606,7 @@ ModelPtr load(const std::string &file) {
     const std::string what = file + ": joint " + quote(j.name);
     check_name(file, "joint", j.name);
     st__strlcpy(m->jnt_name[b], j.name.c_str(), ST_NAME_MAX);
-    if (!finite_pose(j.parent_to_joint_origin_transform))
-      fail(ST_ERR_MODEL, what + ": origin is not finite");
+    check_origin(what, j.parent_to_joint_origin_transform);
     store_vec(j.parent_to_joint_origin_transform.position, m->jnt_pos[b]);
     store_rot(j.parent_to_joint_origin_transform.rotation, m->jnt_rot[b]);
     if (j.type == urdf::Joint::FIXED) {
@@ -498,13 +622,12 @@ ModelPtr load(const std::string &file) {
     Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
     double norm = axis.norm();
     if (!(norm > 1e-12)) fail(ST_ERR_MODEL, what + ": axis is zero (expected a direction)");
+    if (!std::isfinite(norm)) fail(ST_ERR_MODEL, what + ": axis is not finite");
     axis /= norm;
     for (int i = 0; i < 3; i++) m->jnt_axis[b][i] = axis[i];
     if (j.limits) {
       const urdf::JointLimits &lim = *j.limits;
-      if (!std::isfinite(lim.effort) || !std::isfinite(lim.velocity) || lim.effort < 0 ||
-          lim.velocity < 0)
-        fail(ST_ERR_MODEL, what + ": limit effort and velocity must be finite and >= 0");
+      check_limits(what, lim, j.type == urdf::Joint::REVOLUTE);
       m->jnt_effort[b] = lim.effort;
       m->jnt_velocity[b] = lim.velocity;
     }
@@ -514,9 +637,6 @@ ModelPtr load(const std::string &file) {
     } else {
       if (!j.limits) fail(ST_ERR_MODEL, what + ": revolute joint without <limit>");
       const urdf::JointLimits &lim = *j.limits;
-      if (!std::isfinite(lim.lower) || !std::isfinite(lim.upper) || lim.lower > lim.upper)
-        fail(ST_ERR_MODEL, what + ": limit lower " + std::to_string(lim.lower) + ", upper " +
-                               std::to_string(lim.upper) + " (expected finite, lower <= upper)");
       m->jnt_range[b][0] = lim.lower;
       m->jnt_range[b][1] = lim.upper;
     }
@@ -582,9 +702,6 @@ ModelPtr load(const std::string &file) {
       default:
         fail(ST_ERR_MODEL, what + ": unknown geometry type");
     }
-    for (int i = 0; i < 3; i++)
-      if (!std::isfinite(size[i]) || size[i] < 0)
-        fail(ST_ERR_MODEL, what + ": size must be finite and >= 0");
   }
   return model;
 }
@@ -596,7 +713,40 @@ void one_line(char *err, size_t errsz) {
     if (*p == '\n' || *p == '\r') *p = ' ';
 }
 
+// runs an import, turning every failure into a status and one line in err
+template <class F>
+stStatus guarded(const char *name, F import, stModel **model, char *err, size_t errsz) {
+  try {
+    *model = import().release();
+    return ST_OK;
+  } catch (const Failure &f) {
+    st__errf(err, errsz, "%s", f.msg.c_str());
+    one_line(err, errsz);
+    return f.status;
+  } catch (const std::bad_alloc &) {
+    st__errf(err, errsz, "%s: out of memory", name);
+    return ST_ERR_NOMEM;
+  } catch (const std::exception &e) {
+    st__errf(err, errsz, "%s: malformed URDF (%s)", name, e.what());
+    one_line(err, errsz);
+    return ST_ERR_PARSE;
+  } catch (...) {
+    st__errf(err, errsz, "%s: malformed URDF (unknown error)", name);
+    return ST_ERR_PARSE;
+  }
+}
+
 }  // namespace
+
+extern "C" stStatus st__model_parse_urdf(const char *name, const char *dir, const char *text,
+                                         size_t len, stModel **model, char *err, size_t errsz) {
+  if (model) *model = nullptr;
+  if (!name || !dir || (!text && len) || !model) {
+    st__errf(err, errsz, "st__model_parse_urdf: name, dir, text and model are required");
+    return ST_ERR_ARG;
+  }
+  return guarded(name, [&] { return load(name, dir, std::string(text, len)); }, model, err, errsz);
+}
 
 extern "C" stStatus st_model_load_urdf(const char *path, stModel **model, char *err,
                                        size_t errsz) {
@@ -605,22 +755,6 @@ extern "C" stStatus st_model_load_urdf(const char *path, stModel **model, char *
     st__errf(err, errsz, "st_model_load_urdf: path and model are required");
     return ST_ERR_ARG;
   }
-  try {
-    *model = load(path).release();
-    return ST_OK;
-  } catch (const Failure &f) {
-    st__errf(err, errsz, "%s", f.msg.c_str());
-    one_line(err, errsz);
-    return f.status;
-  } catch (const std::bad_alloc &) {
-    st__errf(err, errsz, "%s: out of memory", path);
-    return ST_ERR_NOMEM;
-  } catch (const std::exception &e) {
-    st__errf(err, errsz, "%s: malformed URDF (%s)", path, e.what());
-    one_line(err, errsz);
-    return ST_ERR_PARSE;
-  } catch (...) {
-    st__errf(err, errsz, "%s: malformed URDF (unknown error)", path);
-    return ST_ERR_PARSE;
-  }
+  return guarded(path, [&] { return load(path, dir_of(path), read_file(path)); }, model, err,
+                 errsz);
 }

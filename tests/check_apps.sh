@@ -35,7 +35,7 @@ printf '[ga]\nmutation_rate = 0.1\n' > "$tmp/good.cfg"
 
 expect_fail "bad config key" "$tmp/bad.cfg:3: key 'ga.mutaton_rate': unknown key" \
   "$APPDIR/neteval" "$tmp/g.genome" --config "$tmp/bad.cfg"
-expect_fail "missing config" "$tmp/none.cfg: cannot open config" \
+expect_fail "missing config" "$tmp/none.cfg: cannot open: No such file or directory" \
   "$APPDIR/neteval" "$tmp/g.genome" --config "$tmp/none.cfg"
 expect_fail "bad --set" "--set network.lamda=2: key 'network.lamda': unknown key" \
   "$APPDIR/neteval" "$tmp/g.genome" --set network.lamda=2

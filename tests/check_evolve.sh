@@ -134,7 +134,7 @@ if [ "$(id -u)" = 0 ]; then
 else
   expect "unwritable DIR refused" "not writable" "$tmp/ro" "$EV" $cfg --out "$tmp/ro"
 fi
-expect "missing config refused" "$tmp/none.cfg: cannot open config" "$tmp/b3" "$EV" "$tmp/none.cfg" --out "$tmp/b3"
+expect "missing config refused" "$tmp/none.cfg: cannot open: No such file or directory" "$tmp/b3" "$EV" "$tmp/none.cfg" --out "$tmp/b3"
 # a dynamic world that cannot be built is refused before simple-prim runs, not after it
 expect "bad dynamics.kinematic_joints refused before the first stage" \
   "dynamics.kinematic_joints: 'l_elbow' names 1 joints but not 'torso_pitch'" "$tmp/b4" \

@@ -47,6 +47,17 @@ const char *st_test_write_tmp(char *path, size_t n, const char *suffix, const ch
   return path;
 }
 
+const char *st_test_write_tmp_n(char *path, size_t n, const char *suffix, const void *data,
+                                size_t len) {
+  static int counter;
+  snprintf(path, n, "%s/b%d%s", tmproot(), counter++, suffix);
+  FILE *f = fopen(path, "wb");
+  if (!f) return NULL;
+  size_t w = fwrite(data, 1, len, f);
+  if (fclose(f) != 0 || w != len) return NULL;
+  return path;
+}
+
 const char *st_test_tmpdir(char *path, size_t n) {
   static int counter;
   snprintf(path, n, "%s/d%d", tmproot(), counter++);

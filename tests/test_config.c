@@ -135,7 +135,24 @@ static void test_config_errors(void) {
   char err[512];
   st_config_default(&c);
   CU_ASSERT_EQUAL(st_config_load("/nonexistent/run.cfg", &c, err, sizeof err), ST_ERR_IO);
-  ST_ASSERT_CONTAINS(err, "/nonexistent/run.cfg: cannot open config: No such file");
+  ST_ASSERT_CONTAINS(err, "/nonexistent/run.cfg: cannot open: No such file");
+}
+
+/* issue 17: a NUL byte cuts a line short for inih (the rest would be silently dropped), and a
+ * file that never ends must not fill the memory; both refused, nothing of them applied */
+static void test_config_hostile_files(void) {
+  static const char text[] = "[ga]\npopulation = 50\0 and junk\nelites = 3\n";
+  char path[256], err[512];
+  stConfig c;
+  st_config_default(&c);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp_n(path, sizeof path, ".cfg", text, sizeof text - 1));
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, path);
+  ST_ASSERT_CONTAINS(err, ":2: NUL byte at column 16 (expected a text file)");
+  CU_ASSERT_EQUAL(c.ga_population, 100); /* the default: nothing of the file was applied */
+  CU_ASSERT_EQUAL(st_config_load("/dev/zero", &c, err, sizeof err), ST_ERR_RANGE);
+  CU_ASSERT_STRING_EQUAL(err, "/dev/zero: larger than 64 MiB (expected an input file of at most "
+                              "67108864 bytes)");
 }
 
 static void test_config_set_errors(void) {
@@ -341,6 +358,7 @@ void st_suite_config(void) {
   ST_ADD_TEST(test_config_load_ok);
   ST_ADD_TEST(test_config_roundtrip);
   ST_ADD_TEST(test_config_errors);
+  ST_ADD_TEST(test_config_hostile_files);
   ST_ADD_TEST(test_config_set_errors);
   ST_ADD_TEST(test_config_table);
   ST_ADD_TEST(test_config_stage_keys);

@@ -100,6 +100,32 @@ static void test_genome_reject(void) {
   free(bad);
 }
 
+/* issue 17: a valid genotype line followed by a NUL byte and junk was read as the line alone
+ * (strlen after getline); metadata the reader uses must parse; a file that never ends is
+ * refused at the size limit */
+static void test_genome_hostile_files(void) {
+  char *line = hex_line(612, "8000"), path[256], err[512];
+  const size_t n = strlen(line);
+  char *text = malloc(n + 16);
+  memcpy(text, line, n - 1);         /* the line without its newline */
+  memcpy(text + n - 1, "\0junk\n", 6); /* NUL at column 2449 of line 1 */
+  stGenomeSet set;
+  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp_n(path, sizeof path, ".genome", text, n + 5));
+  CU_ASSERT_EQUAL(st_genome_set_read(path, 0, &set, err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, path);
+  ST_ASSERT_CONTAINS(err, ":1: NUL byte at column 2449 (expected a text file)");
+  CU_ASSERT_EQUAL(set.count, 0);
+  char buf[4000];
+  snprintf(buf, sizeof buf, "# fitness 1.5x\n%s", line);
+  expect_reject(buf, 0, ":1: '# fitness 1.5x': not a number (expected a finite number)");
+  snprintf(buf, sizeof buf, "# generation -2\n%s", line);
+  expect_reject(buf, 0, ":1: '# generation -2': not a generation (expected an integer >= 0)");
+  CU_ASSERT_EQUAL(st_genome_set_read("/dev/zero", 0, &set, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "/dev/zero: larger than 64 MiB");
+  free(text);
+  free(line);
+}
+
 static void test_genome_grow(void) {
   stGenome base, a, b, a2;
   stRng rng = st_rng_keyed(2, ST_RNG_USER, 0, 0, 0);
@@ -143,6 +169,7 @@ void st_suite_genome(void) {
   ST_ADD_SUITE("genome");
   ST_ADD_TEST(test_genome_roundtrip);
   ST_ADD_TEST(test_genome_reject);
+  ST_ADD_TEST(test_genome_hostile_files);
   ST_ADD_TEST(test_genome_grow);
   ST_ADD_TEST(test_arch_names);
 }

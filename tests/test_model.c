@@ -431,7 +431,7 @@ static void test_model_errors(void) {
   CU_ASSERT_EQUAL(st_model_load_urdf(path, &m, err, sizeof err), ST_ERR_IO);
   CU_ASSERT_PTR_NULL(m);
   ST_ASSERT_CONTAINS(err, path);
-  ST_ASSERT_CONTAINS(err, "cannot open (No such file or directory)");
+  ST_ASSERT_CONTAINS(err, "cannot open: No such file or directory");
   CU_ASSERT_EQUAL(st_model_load_urdf(path, &m, NULL, 0), ST_ERR_IO); /* err is nullable */
 
   /* malformed XML, and a value urdfdom logs as an error yet would otherwise drop */

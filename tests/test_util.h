@@ -29,6 +29,10 @@ void st_test_add(CU_pSuite suite, const char *name, CU_TestFunc fn);
  * when the test binary exits. */
 const char *st_test_write_tmp(char *path, size_t n, const char *suffix, const char *text);
 
+/* the same for len bytes of binary data (NUL bytes included) */
+const char *st_test_write_tmp_n(char *path, size_t n, const char *suffix, const void *data,
+                                size_t len);
+
 /* The default config, robot and scene, loaded on first use and shared by the suites (freed
  * when the test binary exits). robot is NULL when the model cannot be loaded (the message is
  * printed). */

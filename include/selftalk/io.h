@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT
- * libselftalk: atomic file writing. Results and checkpoints are written to a temporary file
- * beside the target and renamed over it, so a killed run leaves either the old file or the
- * complete new one. */
+ * libselftalk: file input and output. Every input file (config, genome, checkpoint, URDF, mesh,
+ * score table) is read by one bounded reader; results and checkpoints are written to a
+ * temporary file beside the target and renamed over it, so a killed run leaves either the old
+ * file or the complete new one. */
 #ifndef SELFTALK_IO_H
 #define SELFTALK_IO_H
 
@@ -14,6 +15,23 @@ extern "C" {
 #endif
 
 #define ST_PATH_MAX 4096
+
+/* The largest input file a reader takes: 64 MiB, 17 times the best.genome of a 1500-generation
+ * run (the thesis' cap) and 250 times a 100-genotype checkpoint. A larger file, or a device
+ * that never ends (/dev/zero), is refused instead of filling the memory. */
+#define ST_FILE_MAX ((size_t)64 << 20)
+
+/* Reads the whole file at path, at most max bytes, into a new buffer (*data, freed with
+ * free()) with a terminating NUL after its *len bytes. Errors: "PATH: cannot open: REASON",
+ * "PATH: cannot read: REASON" (a directory, an I/O error), "PATH: larger than 64 MiB (expected
+ * an input file of at most 67108864 bytes)". On failure *data is NULL and *len 0. */
+stStatus st_file_read(const char *path, size_t max, char **data, size_t *len, char *err,
+                      size_t errsz);
+
+/* Refuses a NUL byte in text that should be text (a genome line followed by NUL and junk
+ * would otherwise read as the line alone): "NAME:LINE: NUL byte at column C (expected a text
+ * file)". */
+stStatus st_text_check(const char *name, const char *text, size_t len, char *err, size_t errsz);
 
 /* A file being written atomically; a plain value owned by the caller. */
 typedef struct stAtomicFile {
