@@ -483,7 +483,98 @@ static void test_model_errors(void) {
                ST_ERR_PARSE, "link 'a': collision mesh 'junk.stl': cannot read (assimp: ", NULL);
 }
 
-/* ---- (d) the shipped iCub arm of data/: it must be there and load ---- */
+/* ---- (d) what the world cannot simulate, refused at load time (issue 17) ---- */
+
+#define INERTIAL(mass, ixx, iyy, izz) \
+  "<inertial><mass value=\"" mass "\"/><inertia ixx=\"" ixx "\" ixy=\"0\" ixz=\"0\" iyy=\"" iyy \
+  "\" iyz=\"0\" izz=\"" izz "\"/></inertial>"
+#define COLLISION(geom) "<collision><geometry>" geom "</geometry></collision>"
+#define FIXED_AT(xyz) \
+  "type=\"fixed\"><origin xyz=\"" xyz "\"/><parent link=\"a\"/><child link=\"b\"/>"
+#define REVOLUTE(limit) \
+  "type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit " limit "/>"
+
+static void test_model_unsimulable(void) {
+  char dir[256];
+  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_tmpdir(dir, sizeof dir));
+  /* degenerate shapes: a zero-length cylinder aborted the process inside libccd */
+  expect_error(dir, "cyl_len0.urdf", ROBOT1(COLLISION("<cylinder radius=\"0.01\" length=\"0\"/>")),
+               ST_ERR_MODEL, "link 'a': collision 1: cylinder length 0 (expected 1e-06..10 m)", NULL);
+  expect_error(dir, "cyl_r.urdf", ROBOT1(COLLISION("<cylinder radius=\"-0.01\" length=\"0.1\"/>")),
+               ST_ERR_MODEL, "link 'a': collision 1: cylinder radius -0.01 (expected 1e-06..10 m)", NULL);
+  expect_error(dir, "box0.urdf", ROBOT1(COLLISION("<box size=\"0.1 0 0.1\"/>")), ST_ERR_MODEL,
+               "link 'a': collision 1: box size y 0 (expected 1e-06..10 m)", NULL);
+  expect_error(dir, "sphere_tiny.urdf", ROBOT1(COLLISION("<sphere radius=\"1e-9\"/>")), ST_ERR_MODEL,
+               "link 'a': collision 1: sphere radius 1e-09 (expected 1e-06..10 m)", NULL);
+  expect_error(dir, "sphere_big.urdf", ROBOT1(COLLISION("<sphere radius=\"11\"/>")), ST_ERR_MODEL,
+               "link 'a': collision 1: sphere radius 11 (expected 1e-06..10 m)", NULL);
+  /* masses and inertias: 1e308 kg aborted ODE (dxNormalize4); zero mass and a tensor that is
+   * not positive definite failed only at the first dynamic evaluation, without the file */
+  expect_error(dir, "mass_huge.urdf", ROBOT1(INERTIAL("1e308", "1", "1", "1")), ST_ERR_MODEL,
+               "link 'a': inertial: mass 1e+308 kg (expected 1e-06..1000 kg)", NULL);
+  expect_error(dir, "mass0.urdf", ROBOT1(INERTIAL("0", "1e-4", "1e-4", "1e-4")), ST_ERR_MODEL,
+               "link 'a': inertial: mass 0 kg (expected 1e-06..1000 kg)", NULL);
+  expect_error(dir, "inertia_npd.urdf", ROBOT1(INERTIAL("1", "1e-3", "-1e-3", "1e-3")), ST_ERR_MODEL,
+               "link 'a': inertial: inertia is not positive definite (principal moments -0.001, "
+               "0.001, 0.001 kg m^2; expected all > 0)", NULL);
+  /* principal moments 1, 1, 3: 1 + 1 < 3, no rigid body has them */
+  expect_error(dir, "inertia_tri.urdf", ROBOT1(INERTIAL("1", "1", "1", "3")), ST_ERR_MODEL,
+               "link 'a': inertial: inertia breaks the triangle inequality (principal moments 1, "
+               "1, 3 kg m^2; expected the largest <= the sum of the other two)", NULL);
+  expect_error(dir, "inertia_big.urdf", ROBOT1(INERTIAL("1", "2000", "2000", "2000")), ST_ERR_MODEL,
+               "link 'a': inertial: inertia too large", "expected at most 1000 kg m^2");
+  /* transforms: 1e308 is finite, and simprobe printed nan with exit 0 */
+  expect_error(dir, "origin_huge.urdf", ROBOT2(FIXED_AT("1e308 0 0")), ST_ERR_MODEL,
+               "joint 'j': origin xyz (1e+308, 0, 0) is farther than 10 m (expected |xyz| <= 10 m)",
+               NULL);
+  expect_error(dir, "origin_11.urdf", ROBOT2(FIXED_AT("0 6 9")), ST_ERR_MODEL,
+               "joint 'j': origin xyz (0, 6, 9) is farther than 10 m", NULL);
+  expect_error(dir, "col_origin.urdf",
+               ROBOT1("<collision><origin xyz=\"0 0 -20\"/><geometry><sphere radius=\"0.1\"/>"
+                      "</geometry></collision>"),
+               ST_ERR_MODEL, "link 'a': collision 1: origin xyz (0, 0, -20) is farther than 10 m", NULL);
+  /* limits in degrees, not radians; an effort no motor has */
+  expect_error(dir, "limit_deg.urdf", ROBOT2(REVOLUTE("lower=\"-90\" upper=\"90\" effort=\"1\" velocity=\"1\"")),
+               ST_ERR_MODEL, "joint 'j': limit lower -90, upper 90 (expected radians in -2 pi..2 pi", NULL);
+  expect_error(dir, "effort.urdf", ROBOT2(REVOLUTE("lower=\"0\" upper=\"1\" effort=\"1e308\" velocity=\"1\"")),
+               ST_ERR_MODEL, "joint 'j': limit effort 1e+308, velocity 1 (expected effort in 0..10000 N m", NULL);
+  expect_error(dir, "axis_huge.urdf",
+               ROBOT2("type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/>"
+                      "<axis xyz=\"1e308 1e308 0\"/>"),
+               ST_ERR_MODEL, "joint 'j': axis is not finite", NULL);
+  /* a mesh in millimetres (no scale) and a scale of 0 */
+  char path[400];
+  write_in(path, sizeof path, dir, "mm.stl",
+           "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 500 0 0\n"
+           "vertex 0 500 0\nendloop\nendfacet\nendsolid t\n");
+  expect_error(dir, "mesh_mm.urdf", ROBOT1(COLLISION("<mesh filename=\"mm.stl\"/>")), ST_ERR_MODEL,
+               "link 'a': collision mesh 'mm.stl': vertex (500, 0, 0) is not finite or farther "
+               "than 100 m from the origin", "scale=\"0.001 0.001 0.001\"");
+  expect_error(dir, "mesh_scale0.urdf",
+               ROBOT1(COLLISION("<mesh filename=\"mm.stl\" scale=\"0.001 0 0.001\"/>")), ST_ERR_MODEL,
+               "link 'a': collision mesh 'mm.stl': scale 0.001 0 0.001 (expected each |scale| in "
+               "1e-06..1000 )", NULL);
+  /* a mesh file that never ends is not handed to assimp */
+  expect_error(dir, "mesh_dev.urdf", ROBOT1(COLLISION("<mesh filename=\"/dev/zero\"/>")), ST_ERR_IO,
+               "collision mesh '/dev/zero': cannot read (/dev/zero: not a regular file)", NULL);
+}
+
+/* the file itself: NUL bytes (TinyXML would stop at the first one) and no end */
+static void test_model_hostile_files(void) {
+  static const char text[] = "<robot name=\"r\"><link name=\"a\"/></robot>\n\0<junk/>";
+  char path[256], err[512];
+  stModel *m = (stModel *)&m;
+  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp_n(path, sizeof path, ".urdf", text, sizeof text - 1));
+  CU_ASSERT_EQUAL(st_model_load_urdf(path, &m, err, sizeof err), ST_ERR_PARSE);
+  CU_ASSERT_PTR_NULL(m);
+  ST_ASSERT_CONTAINS(err, path);
+  ST_ASSERT_CONTAINS(err, ":2: NUL byte at column 1 (expected a text file)");
+  CU_ASSERT_EQUAL(st_model_load_urdf("/dev/zero", &m, err, sizeof err), ST_ERR_RANGE);
+  CU_ASSERT_STRING_EQUAL(err, "/dev/zero: larger than 64 MiB (expected an input file of at most "
+                              "67108864 bytes)");
+}
+
+/* ---- (e) the shipped iCub arm of data/: it must be there and load ---- */
 
 static void test_model_icub(void) {
   const char *path = "data/icub_left_arm.urdf";
@@ -505,5 +596,7 @@ void st_suite_model(void) {
   ST_ADD_TEST(test_model_tree);
   ST_ADD_TEST(test_model_mesh);
   ST_ADD_TEST(test_model_errors);
+  ST_ADD_TEST(test_model_unsimulable);
+  ST_ADD_TEST(test_model_hostile_files);
   ST_ADD_TEST(test_model_icub);
 }
