@@ -11,14 +11,13 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "checkpoint.h"
 #include "internal.h"
 #include "selftalk/assemble.h"
 #include "selftalk/ga.h"
 #include "selftalk/integrated.h"
 #include "selftalk/io.h"
 #include "selftalk/trial.h"
-
-#define CKPT_MAGIC "selftalk-checkpoint 1"
 
 /* the primitive stages evolve the base network; network.arch names what the integrated stage
  * grows it into (thesis 2.9.2), so a run without that stage refuses another value of it */
@@ -61,9 +60,9 @@ static void hms(double s, char *buf, size_t n) {
   snprintf(buf, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
 }
 
-static long file_size(const char *path) {
+static long long file_size(const char *path) {
   struct stat st;
-  return stat(path, &st) == 0 ? (long)st.st_size : -1;
+  return stat(path, &st) == 0 ? (long long)st.st_size : -1;
 }
 
 /* the out dir must exist (created) and take files, before any work */
@@ -99,53 +98,33 @@ static stStatus prepare_dir(run *R, char *err, size_t errsz) {
   return ST_OK;
 }
 
-/* ---- checkpoint ---- */
+/* ---- checkpoint (lib/checkpoint.h) ---- */
 
-typedef struct ckpt {
-  int generation, stage_idx, stage_gen, done;
-  long csv_bytes, best_bytes;
-  stGenomeSet pop;
-} ckpt;
+/* what a checkpoint of this run may hold */
+static stCheckpointRun checkpoint_run(const run *R) {
+  stCheckpointRun cr = {R->nstages, R->cfg->ga_population,
+                        st_arch_ngenes(R->integrated ? R->idef.arch : PRIM_ARCH), R->limit};
+  return cr;
+}
 
 static stStatus write_checkpoint(run *R, int generation, int done, const stGenome *pop, int n,
                                  char *err, size_t errsz) {
+  stCheckpoint c = {generation, R->stage_idx, R->stage_gen, done, file_size(R->path[P_CSV]),
+                    file_size(R->path[P_BEST]), {0, NULL, NULL, NULL}};
+  if (c.csv_bytes < 0 || c.best_bytes < 0) {
+    st__errf(err, errsz, "%s: cannot measure %s and %s: %s", R->path[P_CKPT], R->path[P_CSV],
+             R->path[P_BEST], strerror(errno));
+    return ST_ERR_IO;
+  }
   stAtomicFile af;
   stStatus st = st_atomic_open(&af, R->path[P_CKPT], err, errsz);
   if (st) return st;
-  fprintf(af.f, "# %s\n# generation %d\n# stage_idx %d\n# stage_gen %d\n# done %d\n",
-          CKPT_MAGIC, generation, R->stage_idx, R->stage_gen, done);
-  fprintf(af.f, "# csv_bytes %ld\n# best_bytes %ld\n", file_size(R->path[P_CSV]),
-          file_size(R->path[P_BEST]));
-  for (int i = 0; i < n; i++) st_genome_write(af.f, &pop[i], -1, NAN);
-  return st_atomic_commit(&af, err, errsz);
-}
-
-static stStatus read_checkpoint(const char *path, ckpt *c, char *err, size_t errsz) {
-  memset(c, 0, sizeof *c);
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    st__errf(err, errsz, "%s: cannot open: %s", path, strerror(errno));
+  if (st__checkpoint_write(af.f, &c, pop, n)) {
+    st__errf(err, errsz, "%s: cannot write: %s", af.tmp, strerror(errno));
+    st_atomic_abort(&af);
     return ST_ERR_IO;
   }
-  char line[256], key[64];
-  long v;
-  int magic = 0;
-  while (fgets(line, sizeof line, f) && line[0] == '#') {
-    if (strstr(line, CKPT_MAGIC)) magic = 1;
-    if (sscanf(line, "# %63s %ld", key, &v) != 2) continue;
-    if (!strcmp(key, "generation")) c->generation = (int)v;
-    else if (!strcmp(key, "stage_idx")) c->stage_idx = (int)v;
-    else if (!strcmp(key, "stage_gen")) c->stage_gen = (int)v;
-    else if (!strcmp(key, "done")) c->done = (int)v;
-    else if (!strcmp(key, "csv_bytes")) c->csv_bytes = v;
-    else if (!strcmp(key, "best_bytes")) c->best_bytes = v;
-  }
-  fclose(f);
-  if (!magic) {
-    st__errf(err, errsz, "%s: not a selftalk checkpoint (expected '# %s')", path, CKPT_MAGIC);
-    return ST_ERR_PARSE;
-  }
-  return st_genome_set_read(path, 0, &c->pop, err, errsz);
+  return st_atomic_commit(&af, err, errsz);
 }
 
 /* ---- evaluation ---- */
@@ -272,10 +251,13 @@ static stStatus load_initial(run *R, stGenomeSet *set, char *err, size_t errsz) 
   memset(set, 0, sizeof *set);
   if (!path[0]) return ST_OK;
   stStatus st = st_genome_set_read(path, st_arch_ngenes(PRIM_ARCH), set, err, errsz);
-  if (st) return st;
+  if (st) {
+    st__err_key(err, errsz, "stage.init_population");
+    return st;
+  }
   if (set->count < R->cfg->ga_population) {
-    st__errf(err, errsz, "stage.init_population: %s has %d genotypes (expected at least %d)", path,
-             set->count, R->cfg->ga_population);
+    st__errf(err, errsz, "key 'stage.init_population': %s has %d genotypes (expected at least "
+             "ga.population = %d)", path, set->count, R->cfg->ga_population);
     st_genome_set_free(set);
     return ST_ERR_ARG;
   }
@@ -486,47 +468,47 @@ static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz
   return ST_OK;
 }
 
-/* the population to start from: the checkpoint's (resuming), else the stage's initial one;
- * *done when the checkpointed run is complete */
-static stStatus start_population(run *R, int *have_ckpt, int *done, char *err, size_t errsz) {
-  const stEvolveDef *def = R->def;
-  ckpt ck;
-  memset(&ck, 0, sizeof ck);
-  *have_ckpt = def->resume && file_size(R->path[P_CKPT]) >= 0;
-  *done = 0;
-  if (def->resume && !*have_ckpt && def->progress)
-    fprintf(def->progress, "evolve: no checkpoint in %s: starting fresh\n", def->out_dir);
+/* resuming: the checkpoint, validated against this run's configuration and files before
+ * anything in the directory changes */
+static stStatus read_resume(run *R, stCheckpoint *ck, char *err, size_t errsz) {
+  stStatus st = same_config(R, err, errsz);
+  if (st) return st;
+  const stCheckpointRun cr = checkpoint_run(R);
+  st = st__checkpoint_read(R->path[P_CKPT], &cr, R->path[P_CSV], R->path[P_BEST], ck, err, errsz);
+  if (st) return st;
+  if (ck->done && R->def->progress)
+    fprintf(R->def->progress, "evolve: the run in %s is complete\n", R->def->out_dir);
+  R->stage_idx = ck->stage_idx;
+  R->stage_gen = ck->stage_gen;
+  return ST_OK;
+}
+
+/* the GA from the checkpoint's population (resuming) or the stage's initial one */
+static stStatus start_population(run *R, const stCheckpoint *ck, int have_ckpt, char *err,
+                                 size_t errsz) {
   stGenomeSet init;
   memset(&init, 0, sizeof init);
   stStatus st = ST_OK;
-  if (*have_ckpt) {
-    if ((st = same_config(R, err, errsz))) return st;
-    if ((st = read_checkpoint(R->path[P_CKPT], &ck, err, errsz))) return st;
-    if (ck.done) {
-      if (def->progress) fprintf(def->progress, "evolve: the run in %s is complete\n", def->out_dir);
-      st_genome_set_free(&ck.pop);
-      *done = 1;
-      return ST_OK;
-    }
-    /* cut the appended files back to the checkpoint's generation */
-    if (truncate(R->path[P_CSV], ck.csv_bytes) != 0 || truncate(R->path[P_BEST], ck.best_bytes) != 0) {
-      st__errf(err, errsz, "cannot resume: %s: %s", def->out_dir, strerror(errno));
-      st_genome_set_free(&ck.pop);
-      return ST_ERR_IO;
-    }
-    R->stage_idx = ck.stage_idx;
-    R->stage_gen = ck.stage_gen;
-  } else {
+  if (!have_ckpt)
     st = R->integrated ? assemble_initial(R, &init, err, errsz) : load_initial(R, &init, err, errsz);
-    if (st) return st;
-  }
-  const stGenome *pop0 = *have_ckpt ? ck.pop.genome : init.count ? init.genome : NULL;
-  const int npop0 = *have_ckpt ? ck.pop.count : init.count;
+  if (st) return st;
+  const stGenome *pop0 = have_ckpt ? ck->pop.genome : init.count ? init.genome : NULL;
+  const int npop0 = have_ckpt ? ck->pop.count : init.count;
   st = make_ga(R, pop0, npop0, err, errsz);
-  if (!st && *have_ckpt) st = st_ga_restore(R->ga, ck.generation, ck.pop.genome, ck.pop.count, err, errsz);
-  st_genome_set_free(&ck.pop);
+  if (!st && have_ckpt) st = st_ga_restore(R->ga, ck->generation, ck->pop.genome, ck->pop.count, err, errsz);
   st_genome_set_free(&init);
   return st;
+}
+
+/* resuming: fitness.csv and best.genome cut back to the checkpoint's generation (the rows of
+ * the unfinished generation are redone); the last step before the first generation */
+static stStatus rewind_files(run *R, const stCheckpoint *ck, char *err, size_t errsz) {
+  if (truncate(R->path[P_CSV], (off_t)ck->csv_bytes) != 0 ||
+      truncate(R->path[P_BEST], (off_t)ck->best_bytes) != 0) {
+    st__errf(err, errsz, "cannot resume: %s: %s", R->def->out_dir, strerror(errno));
+    return ST_ERR_IO;
+  }
+  return ST_OK;
 }
 
 static stStatus allocate(run *R, char *err, size_t errsz) {
@@ -563,13 +545,20 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   if (st) return st;
   if ((st = plan_run(&R, def, err, errsz))) return st;
   if ((st = prepare_dir(&R, err, errsz))) return st;
-  int have_ckpt = 0, done = 0;
-  st = start_population(&R, &have_ckpt, &done, err, errsz);
-  if (!st && !done) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
-  if (!st && !done && !have_ckpt) st = start_files(&R, err, errsz);
-  if (!st && !done) st = allocate(&R, err, errsz);
+  stCheckpoint ck;
+  memset(&ck, 0, sizeof ck);
+  const int have_ckpt = def->resume && file_size(R.path[P_CKPT]) >= 0;
+  if (def->resume && !have_ckpt && def->progress)
+    fprintf(def->progress, "evolve: no checkpoint in %s: starting fresh\n", def->out_dir);
+  if (have_ckpt) st = read_resume(&R, &ck, err, errsz);
+  const int todo = !st && !ck.done;
+  if (todo) st = start_population(&R, &ck, have_ckpt, err, errsz);
+  if (todo && !st) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
+  if (todo && !st) st = allocate(&R, err, errsz);
+  if (todo && !st) st = have_ckpt ? rewind_files(&R, &ck, err, errsz) : start_files(&R, err, errsz);
+  st__checkpoint_free(&ck);
   R.t_start = now();
-  for (int stop = done; !st && !stop;) st = generation(&R, &stop, err, errsz);
+  for (int stop = !todo; !st && !stop;) st = generation(&R, &stop, err, errsz);
   release(&R);
   return st;
 }
