@@ -13,7 +13,8 @@
  *   F_step=... F_switch=... B_pred=... F_pred=...
  * (%.17g): F_step and F_switch averaged over the trials, B_pred summed, F_pred = B_pred +
  * (1/T) sum (F_step / 3 + 2 F_switch / 3) with T the number of trials. --per-trial first prints
- * "trial I F_step=... F_switch=... B_pred=..." for each. Errors name FILE:LINE; exit 2. */
+ * "trial I F_step=... F_switch=... B_pred=..." for each. Errors name FILE:LINE; exit 2. FILE is
+ * read through the library's bounded reader (at most 64 MiB, no NUL bytes). */
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <errno.h>
@@ -22,6 +23,7 @@
 #include <string.h>
 
 #include "app_common.h"
+#include "selftalk/io.h"
 #include "selftalk/prediction.h"
 
 static const char *prog = "score";
@@ -96,15 +98,26 @@ static void parse_row(const char *path, int lineno, char *line, int expect_step,
   add_row(t, (int)word, o);
 }
 
+/* the whole file through the library's bounded reader (selftalk/io.h), NUL bytes refused */
+static char *read_text(const char *path) {
+  char *text, err[1024];
+  size_t len;
+  if (st_file_read(path, ST_FILE_MAX, &text, &len, err, sizeof err) ||
+      st_text_check(path, text, len, err, sizeof err))
+    app_die(prog, "%s", err);
+  return text;
+}
+
 static void read_table(const char *path, table *t) {
-  FILE *f = fopen(path, "r");
-  if (!f) app_die(prog, "%s: cannot open: %s", path, strerror(errno));
-  char *line = NULL;
-  size_t cap = 0;
-  ssize_t len;
+  char *text = read_text(path);
   int lineno = 0, in_trial = 0;
-  while ((len = getline(&line, &cap, f)) >= 0) {
+  /* lines one by one; strtok_r would skip empty lines, which end trials */
+  for (char *line = text, *next; line; line = next) {
+    next = strchr(line, '\n');
+    if (next) *next++ = 0;
+    if (!next && !*line) break; /* after the last newline */
     lineno++;
+    size_t len = strlen(line);
     while (len > 0 && isspace((unsigned char)line[len - 1])) line[--len] = 0;
     char *p = line;
     while (isspace((unsigned char)*p)) p++;
@@ -116,8 +129,7 @@ static void read_table(const char *path, table *t) {
     if (!in_trial) start_trial(t), in_trial = 1;
     parse_row(path, lineno, p, t->len[t->ntrials - 1], t);
   }
-  free(line);
-  fclose(f);
+  free(text);
   if (!t->ntrials) app_die(prog, "%s: no rows (expected step,word,o_reach,o_open,o_grasp,o_move)", path);
 }
 

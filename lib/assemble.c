@@ -72,7 +72,10 @@ static stStatus take_tops(const fileList *l, int top, stGenome *taken, char *err
   for (int f = 0; f < l->n; f++) {
     stGenomeSet set;
     stStatus st = st_genome_set_read(l->path[f], ST_GENES_BASE, &set, err, errsz);
-    if (st) return st;
+    if (st) {
+      st__err_key(err, errsz, "integrated.populations");
+      return st;
+    }
     if (set.count < top) {
       st__errf(err, errsz, "key 'integrated.populations': %s has %d genotypes (expected at least "
                "integrated.top = %d)", l->path[f], set.count, top);

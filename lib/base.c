@@ -33,6 +33,16 @@ int st__errf(char *err, size_t errsz, const char *fmt, ...) {
   return 0;
 }
 
+void st__err_key(char *err, size_t errsz, const char *key) {
+  if (!err || !errsz) return;
+  const size_t n = strlen(err) + 1;
+  char *msg = malloc(n);
+  if (!msg) return; /* the message without its key is still a message */
+  memcpy(msg, err, n);
+  snprintf(err, errsz, "key '%s': %s", key, msg);
+  free(msg);
+}
+
 int st__parse_double(const char *s, double *out) {
   char *end;
   while (isspace((unsigned char)*s)) s++;

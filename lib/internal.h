@@ -17,6 +17,10 @@
 /* Writes a formatted message into a caller's error buffer (nullable); returns 0. */
 int st__errf(char *err, size_t errsz, const char *fmt, ...) ST_PRINTF(3, 4);
 
+/* Puts "key 'KEY': " before the message already in err (nullable): an error that comes from a
+ * config value names its key, e.g. "key 'stage.init_population': 1e: cannot open: ...". */
+void st__err_key(char *err, size_t errsz, const char *key);
+
 /* Parses a whole string as a finite double / an int; 0 on success, -1 otherwise. */
 int st__parse_double(const char *s, double *out);
 int st__parse_int(const char *s, int *out);

@@ -461,7 +461,8 @@ void check_name(const std::string &file, const char *kind, const std::string &na
 ModelPtr load(const std::string &file, const std::string &dir, const std::string &text) {
   if (text.find('\0') != std::string::npos) {
     char err[512];
-    fail(st_text_check(file.c_str(), text.data(), text.size(), err, sizeof err), err);
+    const stStatus st = st_text_check(file.c_str(), text.data(), text.size(), err, sizeof err);
+    fail(st, err);
   }
 
   urdf::ModelInterfaceSharedPtr urdf_model;

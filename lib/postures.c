@@ -213,6 +213,44 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k, dou
   }
 }
 
+/* the config keys a posture is built from (scene.*: where the object is; postures.*: where the
+ * hand goes), named when it cannot be built: in-range values can still put it out of reach */
+static const char *posture_keys(int prim, int k) {
+  switch (prim) {
+    case ST_PRIM_REACH:
+      return "scene.object_center_x, scene.object_center_y, scene.table_top_z, "
+             "scene.object_radius, postures.reach_clearance, postures.reach_max_steps, "
+             "fitness.reach_height";
+    case ST_PRIM_OPEN:
+      return k < 2 ? "scene.object_center_x, scene.object_center_y, scene.object_spacing, "
+                     "scene.table_top_z, scene.object_radius, postures.open_near_ball_x, "
+                     "postures.open_near_gap, postures.open_near_oppose, postures.open_near_thumb, "
+                     "postures.open_near_fingers"
+                   : "scene.object_center_x, scene.object_center_y, scene.object_spacing, "
+                     "scene.table_top_z, scene.object_radius, postures.open_high_gap, "
+                     "postures.open_high_oppose, postures.open_high_flex";
+    case ST_PRIM_GRASP:
+      return k < 2 ? "scene.object_center_x, scene.object_center_y, scene.object_spacing, "
+                     "scene.table_top_z, scene.object_radius, postures.grasp_ball_x, "
+                     "postures.grasp_gap, postures.grasp_oppose"
+                   : "scene.object_center_x, scene.object_center_y, scene.object_spacing, "
+                     "scene.table_top_z, scene.object_radius, postures.grasp_ball_x, "
+                     "postures.grasp_gap, postures.grasp_partial_oppose, "
+                     "postures.grasp_partial_flex, postures.grasp_partial_thumb_flex";
+    default:
+      return "scene.object_center_x, scene.object_center_y, scene.object_spacing, "
+             "scene.table_top_z, scene.object_radius, postures.move_ball_x, postures.move_gap, "
+             "postures.move_oppose, postures.move_squeeze, postures.move_min_fingers";
+  }
+}
+
+/* appends the keys to the message in err */
+static void name_keys(int prim, int k, char *err, size_t errsz) {
+  if (!err || !errsz) return;
+  const size_t n = strlen(err);
+  snprintf(err + n, errsz - n, " [keys: %s]", posture_keys(prim, k));
+}
+
 stStatus st_posture(const stRobot *r, const stScene *s, int prim, int k, double qhat[ST_NDOF],
                     char *err, size_t errsz) {
   if (prim < 0 || prim >= ST_NPRIM || k < 0 || k >= ST_NPOSTURE) {
@@ -222,11 +260,14 @@ stStatus st_posture(const stRobot *r, const stScene *s, int prim, int k, double 
   }
   double q[ST_NDOF];
   stStatus st = compute(r, s, prim, k, q, err, errsz);
-  if (st) return st;
   char why[256];
-  if (!st_posture_check(r, s, prim, k, q, why, sizeof why)) {
+  if (!st && !st_posture_check(r, s, prim, k, q, why, sizeof why)) {
     st__errf(err, errsz, "posture %s %d: %s", st_primitive_name(prim), k, why);
-    return ST_ERR_RANGE;
+    st = ST_ERR_RANGE;
+  }
+  if (st) {
+    name_keys(prim, k, err, errsz);
+    return st;
   }
   memcpy(qhat, q, sizeof q);
   return ST_OK;

@@ -176,7 +176,10 @@ fail:
 stStatus st_robot_create(const stConfig *cfg, stRobot **robot, char *err, size_t errsz) {
   stModel *m = NULL;
   stStatus st = st_model_load_urdf(cfg->robot_urdf, &m, err, errsz);
-  if (st) return st;
+  if (st) {
+    st__err_key(err, errsz, "robot.urdf");
+    return st;
+  }
   return st_robot_bind(m, cfg, cfg->robot_urdf, robot, err, errsz);
 }
 
