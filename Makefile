@@ -6,6 +6,8 @@
 #   make asan       tests under AddressSanitizer + UBSan
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
+#   make fuzz       fuzz targets (clang's libFuzzer, ASan + UBSan) and seed corpora in build-fuzz/;
+#                   make fuzz-run [FUZZ_RUNS=1000000] runs each (not part of make test)
 #   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
 #                   to move results (tests/check_golden.sh)
 #   make install PREFIX=/usr/local
@@ -20,7 +22,7 @@ SAN ?=
 WERROR ?=
 
 PKGS_CORE := inih
-PKGS_SIM := ode ccd urdfdom assimp eigen3
+PKGS_SIM := ode ccd urdfdom tinyxml assimp eigen3
 PKGS_TEST := cunit
 
 WARN := -Wall -Wextra -Wpedantic $(if $(WERROR),-Werror)
@@ -64,14 +66,14 @@ TEST_BIN := $(BUILD)/run_tests
 HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
-  libassimp-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind
+  libassimp-dev libtinyxml-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind
 # Debian's interpreter, which python3-matplotlib serves (another python3 may come first in PATH)
 PYTHON := /usr/bin/python3
 RUN_CONFIG := configs/simple_prim.cfg
 RUN_DIR := runs/simple_prim-s1
 
 .PHONY: all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
-  bench-only golden-update install uninstall clean
+  bench-only golden-update install uninstall clean fuzz fuzz-run
 .DELETE_ON_ERROR:
 
 all: $(CORE_A) $(CORE_SO) $(FULL_A) $(FULL_SO) $(APPS) $(TOOLS)
@@ -152,6 +154,60 @@ bench-only: all
 golden-update: all
 	@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/check_golden.sh --update $(GOLDEN)
 
+# ---- fuzzing (tests/fuzz/): libFuzzer needs clang (Debian: apt-get install clang); the
+# default build and make test do not. The readers and what they call are compiled again with
+# coverage and ASan + UBSan (any UB aborts) into build-fuzz/; each target gets a seed corpus
+# from the shipped files, and libFuzzer adds what it finds to it.
+FUZZ_CC ?= clang
+FUZZ_CXX ?= clang++
+FUZZ_DIR := build-fuzz
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_FLAGS := -g -O1 $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_TARGETS := config genome urdf checkpoint
+FUZZ_LIB := base rng config genome checkpoint model model_urdf
+FUZZ_OBJ := $(FUZZ_LIB:%=$(FUZZ_DIR)/obj/%.o)
+FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
+FUZZ_RUNS ?= 1000000
+FUZZ_TIME ?= 1200
+
+fuzz: $(FUZZ_BIN) $(FUZZ_TARGETS:%=$(FUZZ_DIR)/corpus/%/.seeded)
+
+$(FUZZ_DIR)/obj/%.o: lib/%.c $(HEADERS)
+	@command -v $(FUZZ_CC) > /dev/null || { echo "make fuzz: $(FUZZ_CC) not found (apt-get install clang)"; exit 1; }
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(CPPFLAGS_ALL) -std=c99 $(WARN) $(FUZZ_FLAGS) -c $< -o $@
+
+$(FUZZ_DIR)/obj/%.o: lib/%.cpp $(HEADERS)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(CPPFLAGS_ALL) -std=c++17 -Wall -Wextra $(FUZZ_FLAGS) -c $< -o $@
+
+$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_OBJ) $(HEADERS)
+	$(FUZZ_CC) $(CPPFLAGS_ALL) -std=c99 $(WARN) $(FUZZ_FLAGS) -c $< -o $@.o
+	$(FUZZ_CXX) -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $@.o $(FUZZ_OBJ) $(LIBS_SIM) $(LIBS_CORE)
+
+# seeds: the shipped configs, genomes and URDF, and a short run's checkpoint with its files
+FUZZ_SEEDS_config := configs/*.cfg
+FUZZ_SEEDS_genome := data/evolved/*.genome data/evolved/*/population.genome tests/golden/*.genome
+FUZZ_SEEDS_urdf := data/*.urdf
+FUZZ_SEEDS_checkpoint := tests/fuzz/seeds/checkpoint/*
+$(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
+	@mkdir -p $(@D)
+	cp $(wildcard $(FUZZ_SEEDS_$*)) $(@D)/
+	@touch $@
+
+# each target for FUZZ_RUNS executions (or FUZZ_TIME seconds), one after the other, niced (the
+# machine's evolution runs come first); a hang is an input that takes over 10 s, a leak fails
+# like a crash; what libFuzzer finds goes to build-fuzz/TARGET-crash-*, -leak-*, -timeout-*
+fuzz-run: fuzz
+	@bad=0; for t in $(FUZZ_TARGETS); do \
+	  echo "== fuzz_$$t: -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_TIME)"; \
+	  if TMPDIR=/dev/shm nice -n 19 ./$(FUZZ_DIR)/fuzz_$$t -runs=$(FUZZ_RUNS) \
+	       -max_total_time=$(FUZZ_TIME) -timeout=10 -print_final_stats=1 \
+	       -artifact_prefix=$(FUZZ_DIR)/$$t- $(FUZZ_DIR)/corpus/$$t > $(FUZZ_DIR)/$$t.log 2>&1; then \
+	    grep -E '^(Done|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)' $(FUZZ_DIR)/$$t.log; \
+	  else bad=1; tail -40 $(FUZZ_DIR)/$$t.log; fi; \
+	done; exit $$bad
+
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/selftalk $(DESTDIR)$(PREFIX)/lib/pkgconfig \
 	  $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/selftalk
@@ -173,4 +229,4 @@ uninstall:
 	cd $(DESTDIR)$(PREFIX)/bin && rm -f $(notdir $(APPS))
 
 clean:
-	rm -rf build build-asan $(APPS)
+	rm -rf build build-asan $(FUZZ_DIR) $(APPS)

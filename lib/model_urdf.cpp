@@ -29,6 +29,7 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 #include <sys/stat.h>
+#include <tinyxml.h>
 
 extern "C" {
 #include "internal.h"
@@ -180,6 +181,65 @@ std::unordered_map<std::string, size_t> joint_doc_order(const std::string &x) {
     if (i == npos) break;
   }
   return order;
+}
+
+// ---- loops of joints. urdfdom holds child links by shared_ptr: joints that make a link its own
+// ancestor build a reference cycle it never frees, even when it then refuses the file (found by
+// tests/fuzz/fuzz_urdf.c). The joint graph is checked before urdfdom sees the text, on the view
+// of TinyXML, the parser urdfdom itself uses: <joint> children of <robot>, their <parent link>
+// and <child link>.
+
+using JointEdges = std::map<std::string, std::vector<std::pair<std::string, std::string>>>;
+
+// parent link -> (child link, joint) for every joint that names both
+JointEdges joint_edges(const TiXmlElement *robot) {
+  JointEdges edges;
+  for (const TiXmlElement *j = robot->FirstChildElement("joint"); j;
+       j = j->NextSiblingElement("joint")) {
+    const TiXmlElement *p = j->FirstChildElement("parent"), *c = j->FirstChildElement("child");
+    const char *name = j->Attribute("name");
+    const char *pl = p ? p->Attribute("link") : nullptr, *cl = c ? c->Attribute("link") : nullptr;
+    if (pl && cl) edges[pl].emplace_back(cl, name ? name : "");
+  }
+  return edges;
+}
+
+// depth-first from every link, without recursion (a fuzzed chain can be long): a child found
+// on the current path closes a loop
+void check_joint_loops(const std::string &file, const std::string &text) {
+  TiXmlDocument doc;
+  doc.Parse(text.c_str());
+  const TiXmlElement *robot = doc.Error() ? nullptr : doc.FirstChildElement("robot");
+  if (!robot) return;  // urdfdom says why
+  const JointEdges edges = joint_edges(robot);
+  std::map<std::string, int> state;  // 1: on the current path, 2: done
+  struct Frame {
+    std::string link;
+    size_t next;
+  };
+  for (const auto &start : edges) {
+    if (state[start.first]) continue;
+    std::vector<Frame> path{{start.first, 0}};
+    state[start.first] = 1;
+    while (!path.empty()) {
+      Frame &f = path.back();
+      auto it = edges.find(f.link);
+      if (it == edges.end() || f.next >= it->second.size()) {
+        state[f.link] = 2;
+        path.pop_back();
+        continue;
+      }
+      const auto &edge = it->second[f.next++];
+      int &s = state[edge.first];
+      if (s == 1)
+        fail(ST_ERR_MODEL, file + ": joint " + quote(edge.second) + ": link " + quote(edge.first) +
+                               " becomes its own ancestor (expected the joints to form a tree)");
+      if (s == 0) {
+        s = 1;
+        path.push_back({edge.first, 0});
+      }
+    }
+  }
 }
 
 // ---- pose algebra
@@ -465,6 +525,7 @@ ModelPtr load(const std::string &file, const std::string &dir, const std::string
     fail(st, err);
   }
 
+  check_joint_loops(file, text);
   urdf::ModelInterfaceSharedPtr urdf_model;
   LogCapture capture;
   {
