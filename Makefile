@@ -135,7 +135,12 @@ run-only: all
 	./$(APPDIR)/evolve $(RUN_CONFIG) --out $(RUN_DIR)
 	@$(PYTHON) tools/run_report.py $(RUN_DIR)
 
-test-only: all $(TEST_BIN)
+# fault injection for tests/check_faults.sh (LD_PRELOAD; no sanitizer: it runs inside the apps)
+FAULT_SHIM := $(BUILD)/fault_shim.so
+$(FAULT_SHIM): tests/faults/fault_shim.c | $(BUILD)/obj
+	$(CC) -std=c99 $(WARN) -O2 -fPIC -shared -o $@ $< -ldl
+
+test-only: all $(TEST_BIN) $(FAULT_SHIM)
 	+@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
 
 asan-only:

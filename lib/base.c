@@ -182,24 +182,33 @@ stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t er
   return ST_OK;
 }
 
-stStatus st_atomic_commit(stAtomicFile *af, char *err, size_t errsz) {
-  int bad = ferror(af->f) || fflush(af->f) != 0 || fsync(fileno(af->f)) != 0;
-  int e = errno;
-  if (fclose(af->f) != 0 && !bad) {
-    bad = 1;
-    e = errno;
-  }
+/* the step of a commit that failed, for the message */
+enum { COMMIT_OK, COMMIT_WRITE, COMMIT_SYNC, COMMIT_RENAME };
+
+static int commit_steps(stAtomicFile *af, int *e) {
+  int step = COMMIT_OK;
+  errno = 0;
+  if (ferror(af->f) || fflush(af->f) != 0) step = COMMIT_WRITE;
+  else if (fsync(fileno(af->f)) != 0) step = COMMIT_SYNC;
+  *e = errno;
+  if (fclose(af->f) != 0 && !step) step = COMMIT_WRITE, *e = errno;
   af->f = NULL;
-  if (!bad && rename(af->tmp, af->path) != 0) {
-    bad = 1;
-    e = errno;
-  }
-  if (bad) {
-    remove(af->tmp);
-    st__errf(err, errsz, "%s: cannot write: %s", af->path, strerror(e));
-    return ST_ERR_IO;
-  }
-  return ST_OK;
+  if (!step && rename(af->tmp, af->path) != 0) step = COMMIT_RENAME, *e = errno;
+  if (step && !*e) *e = EIO; /* ferror without errno */
+  return step;
+}
+
+stStatus st_atomic_commit(stAtomicFile *af, char *err, size_t errsz) {
+  int e = 0;
+  const int step = commit_steps(af, &e);
+  if (!step) return ST_OK;
+  remove(af->tmp);
+  if (step == COMMIT_RENAME)
+    st__errf(err, errsz, "%s: cannot write: renaming %s over it: %s", af->path, af->tmp, strerror(e));
+  else
+    st__errf(err, errsz, "%s: cannot write: %s %s: %s", af->path,
+             step == COMMIT_SYNC ? "syncing" : "writing", af->tmp, strerror(e));
+  return ST_ERR_IO;
 }
 
 void st_atomic_abort(stAtomicFile *af) {

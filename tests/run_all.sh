@@ -36,6 +36,7 @@ run_part "apps: argument and input errors" bash tests/check_apps.sh
 run_part "simprobe against iKin v1.0" bash tests/check_simprobe.sh
 run_part "evolve: threads, kill and resume, bad input" bash tests/check_evolve.sh
 run_part "hostile inputs: checkpoints, URDFs, unbounded files, keys named" bash tests/check_inputs.sh
+run_part "fault injection: full disk, read-only directory, failing sync and rename" bash tests/check_faults.sh
 run_part "committed primitive runs replay 16/16 in main-prim" bash tests/check_populations.sh
 run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
 run_part "integrated stage: score, conditions, resume, threads, replay" bash tests/check_integrated.sh

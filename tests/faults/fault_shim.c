@@ -1,0 +1,47 @@
+/* SPDX-License-Identifier: MIT
+ * Fault injection for tests/check_faults.sh, loaded with LD_PRELOAD into an app: the N-th call
+ * (and every later one) of a libc function the run's writers use fails with the error a real
+ * fault gives. Environment (each optional; N counts from 1):
+ *   ST_FAULT_FSYNC_AT=N    fsync fails with ENOSPC (a full disk noticed at sync time)
+ *   ST_FAULT_RENAME_AT=N   rename fails with EIO (the atomic replace fails)
+ *   ST_FAULT_FOPEN_AT=N    fopen for writing ("w", "a") fails with EROFS (a read-only
+ *                          directory; for root, who ignores permissions, without a mount)
+ * Not part of the library; built by the Makefile next to the test binary. */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* 1 when this call is the N-th or a later one of the counter's */
+static int trips(const char *var, long *count) {
+  const char *v = getenv(var);
+  if (!v || !*v) return 0;
+  return ++*count >= atol(v);
+}
+
+int fsync(int fd) {
+  static long n;
+  static int (*real)(int);
+  if (trips("ST_FAULT_FSYNC_AT", &n)) return errno = ENOSPC, -1;
+  if (!real) *(void **)&real = dlsym(RTLD_NEXT, "fsync");
+  return real(fd);
+}
+
+int rename(const char *from, const char *to) {
+  static long n;
+  static int (*real)(const char *, const char *);
+  if (trips("ST_FAULT_RENAME_AT", &n)) return errno = EIO, -1;
+  if (!real) *(void **)&real = dlsym(RTLD_NEXT, "rename");
+  return real(from, to);
+}
+
+FILE *fopen(const char *path, const char *mode) {
+  static long n;
+  static FILE *(*real)(const char *, const char *);
+  if ((strchr(mode, 'w') || strchr(mode, 'a')) && trips("ST_FAULT_FOPEN_AT", &n))
+    return errno = EROFS, NULL;
+  if (!real) *(void **)&real = dlsym(RTLD_NEXT, "fopen");
+  return real(path, mode);
+}
