@@ -212,6 +212,31 @@ static void expected(const stConfigKey *k, char *buf, size_t n) {
   }
 }
 
+/* a string value that a config file cannot hold as it is: st_config_write would write it and
+ * the reader read back something else (a resumed run would find config.ini differing). Found
+ * by tests/fuzz/fuzz_config.c: "populations =;eue" stored ";eue", written back as
+ * "populations = ;eue", which reads as an empty value and a comment. Returns 1 with msg. */
+static int str_unwritable(const char *v, char *msg, size_t n) {
+  const size_t len = strlen(v);
+  for (size_t i = 0; i < len; i++) {
+    const unsigned char c = (unsigned char)v[i];
+    if (c < 0x20 || c == 0x7f) {
+      snprintf(msg, n, "control character 0x%02x in '%s' (expected printable text)", c, v);
+      return 1;
+    }
+    if ((c == ';' || c == '#') && (i == 0 || isspace((unsigned char)v[i - 1]))) {
+      snprintf(msg, n, "'%s': '%c' %s reads as a comment in a config file (expected a value "
+               "without one)", v, c, i ? "after a space" : "at the start");
+      return 1;
+    }
+  }
+  if (len && (isspace((unsigned char)v[0]) || isspace((unsigned char)v[len - 1]))) {
+    snprintf(msg, n, "'%s': white space around the value (expected none: a config file drops it)", v);
+    return 1;
+  }
+  return 0;
+}
+
 /* parses value into cfg; on failure writes "problem (expected ...)" into msg */
 static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value, char *msg,
                           size_t n) {
@@ -265,6 +290,9 @@ static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value
         snprintf(msg, n, "value too long (expected %s)", exp);
         return ST_ERR_RANGE;
       }
+      if (str_unwritable(value, msg, n)) return ST_ERR_PARSE;
+      /* the whole field: configs are compared with memcmp (resume) */
+      memset(FIELD(cfg, k, char), 0, ST_CONFIG_STR_MAX);
       st__strlcpy(FIELD(cfg, k, char), value, ST_CONFIG_STR_MAX);
       return ST_OK;
     default: return ST_ERR_ARG;

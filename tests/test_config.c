@@ -155,6 +155,38 @@ static void test_config_hostile_files(void) {
                               "67108864 bytes)");
 }
 
+/* issue 17 (found by tests/fuzz/fuzz_config.c): a string value the config file a run writes
+ * (config.ini) cannot hold as it is was accepted, and the resumed run found config.ini
+ * differing: "populations =;eue" stored ";eue", written back as "populations = ;eue", which
+ * reads as a comment */
+static void test_config_unwritable_strings(void) {
+  char path[256], err[512];
+  stConfig c;
+  st_config_default(&c);
+  st_test_write_tmp(path, sizeof path, ".cfg", "[stage]\ninit_population =;x\n");
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, ":2: key 'stage.init_population': ';x': ';' at the start reads as a "
+                          "comment in a config file (expected a value without one)");
+  st_test_write_tmp(path, sizeof path, ".cfg", "[stage]\ninit_population =#x\n");
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_ERR_PARSE);
+  CU_ASSERT_EQUAL(st_config_set(&c, "robot.urdf=a ;b", err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, "key 'robot.urdf': 'a ;b': ';' after a space reads as a comment");
+  CU_ASSERT_EQUAL(st_config_set(&c, "robot.urdf=a\tb", err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, "control character 0x09");
+  CU_ASSERT_EQUAL(st_config_set(&c, "stage.primitives= reach", err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, "white space around the value");
+  CU_ASSERT_EQUAL(st_config_set(&c, "robot.urdf=a;b#c", err, sizeof err), ST_OK); /* no space: kept */
+  /* a value set over a longer one is the same configuration as the value set alone (resume
+   * compares configurations byte for byte) */
+  stConfig a, b;
+  st_config_default(&a);
+  st_config_default(&b);
+  CU_ASSERT_EQUAL(st_config_set(&a, "stage.init_population=a_long_file_name.genome", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_set(&a, "stage.init_population=s.genome", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_set(&b, "stage.init_population=s.genome", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(memcmp(&a, &b, sizeof a), 0);
+}
+
 static void test_config_set_errors(void) {
   stConfig c;
   char err[512];
@@ -359,6 +391,7 @@ void st_suite_config(void) {
   ST_ADD_TEST(test_config_roundtrip);
   ST_ADD_TEST(test_config_errors);
   ST_ADD_TEST(test_config_hostile_files);
+  ST_ADD_TEST(test_config_unwritable_strings);
   ST_ADD_TEST(test_config_set_errors);
   ST_ADD_TEST(test_config_table);
   ST_ADD_TEST(test_config_stage_keys);
