@@ -190,14 +190,15 @@ $(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_OBJ) $(HEADERS)
 	$(FUZZ_CC) $(CPPFLAGS_ALL) -std=c99 $(WARN) $(FUZZ_FLAGS) -c $< -o $@.o
 	$(FUZZ_CXX) -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $@.o $(FUZZ_OBJ) $(LIBS_SIM) $(LIBS_CORE)
 
-# seeds: the shipped configs, genomes and URDF, and a short run's checkpoint with its files
+# seeds: the shipped configs, genomes and URDF, a short run's checkpoint with its files, and
+# the inputs fuzzing found (tests/fuzz/regressions/TARGET/: each is a regression test too)
 FUZZ_SEEDS_config := configs/*.cfg
 FUZZ_SEEDS_genome := data/evolved/*.genome data/evolved/*/population.genome tests/golden/*.genome
 FUZZ_SEEDS_urdf := data/*.urdf
 FUZZ_SEEDS_checkpoint := tests/fuzz/seeds/checkpoint/*
 $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 	@mkdir -p $(@D)
-	cp $(wildcard $(FUZZ_SEEDS_$*)) $(@D)/
+	cp $(wildcard $(FUZZ_SEEDS_$*) tests/fuzz/regressions/$*/*) $(@D)/
 	@touch $@
 
 # each target for FUZZ_RUNS executions (or FUZZ_TIME seconds), one after the other, niced (the
