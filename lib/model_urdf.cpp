@@ -518,13 +518,15 @@ void check_name(const std::string &file, const char *kind, const std::string &na
 }
 
 // file: the name messages give; dir: where relative mesh paths start
-ModelPtr load(const std::string &file, const std::string &dir, const std::string &text) {
+// the text through urdfdom: loops refused first (check_joint_loops), urdfdom's log captured;
+// any error it logs counts as a failed parse (it logs some, a collision it cannot read say,
+// and still returns a model without the offending element)
+urdf::ModelInterfaceSharedPtr parse_text(const std::string &file, const std::string &text) {
   if (text.find('\0') != std::string::npos) {
     char err[512];
     const stStatus st = st_text_check(file.c_str(), text.data(), text.size(), err, sizeof err);
     fail(st, err);
   }
-
   check_joint_loops(file, text);
   urdf::ModelInterfaceSharedPtr urdf_model;
   LogCapture capture;
@@ -539,8 +541,6 @@ ModelPtr load(const std::string &file, const std::string &dir, const std::string
       urdf_model.reset();
     }
   }
-  // urdfdom logs some errors (a collision it cannot read, say) and still returns a model
-  // without the offending element: any error counts as a failed parse
   if (!urdf_model || !capture.errors.empty()) {
     std::string why;
     for (size_t i = 0; i < capture.errors.size() && i < 3; i++)
@@ -550,19 +550,29 @@ ModelPtr load(const std::string &file, const std::string &dir, const std::string
                                         : "urdfdom: " + why) +
                            ")");
   }
-  urdf::LinkConstSharedPtr root = urdf_model->getRoot();
-  if (!root) fail(ST_ERR_MODEL, file + ": no root link");
+  return urdf_model;
+}
 
-  // ---- bodies: depth-first from the root, children in document order of their joints
+// the bodies in model order: depth-first from the root, children in document order of their
+// joints
+struct Tree {
+  std::vector<const urdf::Link *> links;          // body order
+  std::vector<const urdf::Joint *> parent_joint;  // per body; nullptr for the root
+  std::vector<int> parent_body;
+  std::unordered_map<std::string, int> body_of_joint;
+};
+
+Tree order_bodies(const std::string &file, const std::string &text,
+                  const urdf::ModelInterface &urdf_model) {
+  urdf::LinkConstSharedPtr root = urdf_model.getRoot();
+  if (!root) fail(ST_ERR_MODEL, file + ": no root link");
   const auto doc_order = joint_doc_order(text);
   auto joint_key = [&](const urdf::JointSharedPtr &j) {
     auto it = doc_order.find(j->name);
     return std::make_pair(it == doc_order.end() ? std::numeric_limits<size_t>::max() : it->second,
                           j->name);
   };
-  std::vector<const urdf::Link *> links;         // body order
-  std::vector<const urdf::Joint *> parent_joint; // per body; nullptr for the root
-  std::vector<int> parent_body;
+  Tree t;
   std::unordered_map<const urdf::Link *, int> body_of;
   struct Pending {
     const urdf::Link *link;
@@ -575,11 +585,11 @@ ModelPtr load(const std::string &file, const std::string &dir, const std::string
     stack.pop_back();
     if (body_of.count(p.link))
       fail(ST_ERR_MODEL, file + ": link " + quote(p.link->name) + ": more than one parent joint");
-    int b = static_cast<int>(links.size());
+    int b = static_cast<int>(t.links.size());
     body_of[p.link] = b;
-    links.push_back(p.link);
-    parent_joint.push_back(p.joint);
-    parent_body.push_back(p.parent);
+    t.links.push_back(p.link);
+    t.parent_joint.push_back(p.joint);
+    t.parent_body.push_back(p.parent);
     std::vector<urdf::JointSharedPtr> children = p.link->child_joints;
     std::sort(children.begin(), children.end(),
               [&](const urdf::JointSharedPtr &a, const urdf::JointSharedPtr &c) {
@@ -588,130 +598,135 @@ ModelPtr load(const std::string &file, const std::string &dir, const std::string
     for (auto it = children.rbegin(); it != children.rend(); ++it) {
       const urdf::JointSharedPtr &j = *it;
       if (!j) continue;
-      auto child = urdf_model->links_.find(j->child_link_name);
-      if (child == urdf_model->links_.end() || !child->second)
+      auto child = urdf_model.links_.find(j->child_link_name);
+      if (child == urdf_model.links_.end() || !child->second)
         fail(ST_ERR_MODEL, file + ": joint " + quote(j->name) + ": child link " +
                                quote(j->child_link_name) + " does not exist");
       stack.push_back({child->second.get(), j.get(), b});
     }
   }
-  for (const auto &kv : urdf_model->links_)
+  for (const auto &kv : urdf_model.links_)
     if (kv.second && !body_of.count(kv.second.get()))
       fail(ST_ERR_MODEL, file + ": link " + quote(kv.first) + ": not connected to the root link " +
                              quote(root->name));
-  const int nbody = static_cast<int>(links.size());
-  std::unordered_map<std::string, int> body_of_joint;
-  for (int b = 1; b < nbody; b++) body_of_joint[parent_joint[b]->name] = b;
+  for (size_t b = 1; b < t.links.size(); b++)
+    t.body_of_joint[t.parent_joint[b]->name] = static_cast<int>(b);
+  return t;
+}
 
-  // ---- collision geometry; meshes are read now, so the counts are known before allocating
-  std::vector<GeomSrc> geoms;
+// collision geometry, checked; meshes are read now, so the counts are known before allocating
+struct Geoms {
+  std::vector<GeomSrc> src;
   std::vector<MeshData> meshes;
   size_t nvert = 0, ntri = 0;
-  for (int b = 0; b < nbody; b++) {
-    const urdf::Link *l = links[b];
+};
+
+Geoms gather_geoms(const std::string &file, const std::string &dir, const Tree &t) {
+  Geoms g;
+  for (size_t b = 0; b < t.links.size(); b++) {
+    const urdf::Link *l = t.links[b];
     std::vector<urdf::CollisionSharedPtr> cols = l->collision_array;
     if (cols.empty() && l->collision) cols.push_back(l->collision);
     int k = 0;
     for (const auto &c : cols) {
-      k++;
-      std::string what = file + ": link " + quote(l->name) + ": collision " + std::to_string(k);
+      std::string what = file + ": link " + quote(l->name) + ": collision " + std::to_string(++k);
       if (!c || !c->geometry) fail(ST_ERR_MODEL, what + ": no geometry");
       check_origin(what, c->origin);
       check_shape(what, *c->geometry);
       int mesh = -1;
       if (c->geometry->type == urdf::Geometry::MESH) {
         const auto &m = static_cast<const urdf::Mesh &>(*c->geometry);
-        meshes.push_back(
+        g.meshes.push_back(
             load_mesh(file + ": link " + quote(l->name) + ": collision mesh " + quote(m.filename),
                       dir, m));
-        mesh = static_cast<int>(meshes.size()) - 1;
-        nvert += meshes.back().vert.size();
-        ntri += meshes.back().tri.size();
-        if (nvert > static_cast<size_t>(std::numeric_limits<int>::max() / 2) ||
-            ntri > static_cast<size_t>(std::numeric_limits<int>::max() / 2))
+        mesh = static_cast<int>(g.meshes.size()) - 1;
+        g.nvert += g.meshes.back().vert.size();
+        g.ntri += g.meshes.back().tri.size();
+        if (g.nvert > static_cast<size_t>(std::numeric_limits<int>::max() / 2) ||
+            g.ntri > static_cast<size_t>(std::numeric_limits<int>::max() / 2))
           fail(ST_ERR_MODEL, file + ": too many mesh vertices or triangles");
       }
-      geoms.push_back({b, c.get(), mesh});
+      g.src.push_back({static_cast<int>(b), c.get(), mesh});
     }
   }
+  return g;
+}
 
-  ModelPtr model(st__model_alloc(nbody, static_cast<int>(geoms.size()), static_cast<int>(nvert),
-                                 static_cast<int>(ntri)));
-  if (!model) throw std::bad_alloc();
-  stModel *m = model.get();
+// body b's name, parent, mass, centre of mass and inertia (about the COM, body axes)
+void fill_body(const std::string &file, stModel *m, int b, const urdf::Link &l, int parent) {
+  check_name(file, "link", l.name);
+  st__strlcpy(m->body_name[b], l.name.c_str(), ST_NAME_MAX);
+  m->body_parent[b] = parent;
+  if (!l.inertial) return;  // a massless frame
+  const urdf::Inertial &in = *l.inertial;
+  Eigen::Matrix3d inertia;
+  inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  check_inertial(file + ": link " + quote(l.name) + ": inertial", in, inertia);
+  const urdf::Rotation &r = in.origin.rotation;
+  Eigen::Matrix3d rot = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
+  // the tensor is given in the inertial frame; body axes: R I R^T (kept exactly symmetric)
+  Eigen::Matrix3d ib = rot * inertia * rot.transpose();
+  ib = 0.5 * (ib + ib.transpose()).eval();
+  m->body_mass[b] = in.mass;
+  store_vec(in.origin.position, m->body_com[b]);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) m->body_inertia[b][3 * i + j] = ib(i, j);
+}
 
-  // ---- bodies and joints
-  for (int b = 0; b < nbody; b++) {
-    const urdf::Link *l = links[b];
-    check_name(file, "link", l->name);
-    st__strlcpy(m->body_name[b], l->name.c_str(), ST_NAME_MAX);
-    m->body_parent[b] = parent_body[b];
-    if (l->inertial) {
-      const urdf::Inertial &in = *l->inertial;
-      std::string what = file + ": link " + quote(l->name) + ": inertial";
-      Eigen::Matrix3d inertia;
-      inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-      check_inertial(what, in, inertia);
-      const urdf::Rotation &r = in.origin.rotation;
-      Eigen::Matrix3d rot = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
-      // the tensor is given in the inertial frame; body axes: R I R^T (kept exactly symmetric)
-      Eigen::Matrix3d ib = rot * inertia * rot.transpose();
-      ib = 0.5 * (ib + ib.transpose()).eval();
-      m->body_mass[b] = in.mass;
-      store_vec(in.origin.position, m->body_com[b]);
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) m->body_inertia[b][3 * i + j] = ib(i, j);
-    }
-    if (b == 0) continue;
-
-    const urdf::Joint &j = *parent_joint[b];
-    const std::string what = file + ": joint " + quote(j.name);
-    check_name(file, "joint", j.name);
-    st__strlcpy(m->jnt_name[b], j.name.c_str(), ST_NAME_MAX);
-    check_origin(what, j.parent_to_joint_origin_transform);
-    store_vec(j.parent_to_joint_origin_transform.position, m->jnt_pos[b]);
-    store_rot(j.parent_to_joint_origin_transform.rotation, m->jnt_rot[b]);
-    if (j.type == urdf::Joint::FIXED) {
-      m->jnt_type[b] = ST_JOINT_FIXED;  // axis, range, effort and velocity stay 0
-      if (j.mimic) fail(ST_ERR_MODEL, what + ": a fixed joint cannot mimic another joint");
-      continue;
-    }
-    if (j.type != urdf::Joint::REVOLUTE && j.type != urdf::Joint::CONTINUOUS)
-      fail(ST_ERR_MODEL, what + ": type " + joint_type_name(j.type) +
-                             " not supported (expected revolute, continuous or fixed)");
-    m->jnt_type[b] = ST_JOINT_REVOLUTE;
-    if (!finite3(j.axis)) fail(ST_ERR_MODEL, what + ": axis is not finite");
-    Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
-    double norm = axis.norm();
-    if (!(norm > 1e-12)) fail(ST_ERR_MODEL, what + ": axis is zero (expected a direction)");
-    if (!std::isfinite(norm)) fail(ST_ERR_MODEL, what + ": axis is not finite");
-    axis /= norm;
-    for (int i = 0; i < 3; i++) m->jnt_axis[b][i] = axis[i];
-    if (j.limits) {
-      const urdf::JointLimits &lim = *j.limits;
-      check_limits(what, lim, j.type == urdf::Joint::REVOLUTE);
-      m->jnt_effort[b] = lim.effort;
-      m->jnt_velocity[b] = lim.velocity;
-    }
-    if (j.type == urdf::Joint::CONTINUOUS) {
-      m->jnt_range[b][0] = -INFINITY;
-      m->jnt_range[b][1] = INFINITY;
-    } else {
-      if (!j.limits) fail(ST_ERR_MODEL, what + ": revolute joint without <limit>");
-      const urdf::JointLimits &lim = *j.limits;
-      m->jnt_range[b][0] = lim.lower;
-      m->jnt_range[b][1] = lim.upper;
-    }
+// a revolute (or continuous) joint's unit axis, limits and range
+void fill_revolute(const std::string &what, stModel *m, int b, const urdf::Joint &j) {
+  m->jnt_type[b] = ST_JOINT_REVOLUTE;
+  if (!finite3(j.axis)) fail(ST_ERR_MODEL, what + ": axis is not finite");
+  Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
+  double norm = axis.norm();
+  if (!(norm > 1e-12)) fail(ST_ERR_MODEL, what + ": axis is zero (expected a direction)");
+  if (!std::isfinite(norm)) fail(ST_ERR_MODEL, what + ": axis is not finite");
+  axis /= norm;
+  for (int i = 0; i < 3; i++) m->jnt_axis[b][i] = axis[i];
+  if (j.limits) {
+    const urdf::JointLimits &lim = *j.limits;
+    check_limits(what, lim, j.type == urdf::Joint::REVOLUTE);
+    m->jnt_effort[b] = lim.effort;
+    m->jnt_velocity[b] = lim.velocity;
   }
+  if (j.type == urdf::Joint::CONTINUOUS) {
+    m->jnt_range[b][0] = -INFINITY;
+    m->jnt_range[b][1] = INFINITY;
+  } else {
+    if (!j.limits) fail(ST_ERR_MODEL, what + ": revolute joint without <limit>");
+    m->jnt_range[b][0] = j.limits->lower;
+    m->jnt_range[b][1] = j.limits->upper;
+  }
+}
 
-  // ---- mimic joints (every body's joint is known now)
-  for (int b = 1; b < nbody; b++) {
-    const urdf::Joint &j = *parent_joint[b];
+// body b's parent joint
+void fill_joint(const std::string &file, stModel *m, int b, const urdf::Joint &j) {
+  const std::string what = file + ": joint " + quote(j.name);
+  check_name(file, "joint", j.name);
+  st__strlcpy(m->jnt_name[b], j.name.c_str(), ST_NAME_MAX);
+  check_origin(what, j.parent_to_joint_origin_transform);
+  store_vec(j.parent_to_joint_origin_transform.position, m->jnt_pos[b]);
+  store_rot(j.parent_to_joint_origin_transform.rotation, m->jnt_rot[b]);
+  if (j.type == urdf::Joint::FIXED) {
+    m->jnt_type[b] = ST_JOINT_FIXED;  // axis, range, effort and velocity stay 0
+    if (j.mimic) fail(ST_ERR_MODEL, what + ": a fixed joint cannot mimic another joint");
+    return;
+  }
+  if (j.type != urdf::Joint::REVOLUTE && j.type != urdf::Joint::CONTINUOUS)
+    fail(ST_ERR_MODEL, what + ": type " + joint_type_name(j.type) +
+                           " not supported (expected revolute, continuous or fixed)");
+  fill_revolute(what, m, b, j);
+}
+
+// mimic joints, once every body's joint is known
+void fill_mimics(const std::string &file, stModel *m, const Tree &t) {
+  for (int b = 1; b < m->nbody; b++) {
+    const urdf::Joint &j = *t.parent_joint[b];
     if (!j.mimic) continue;
     const std::string what = file + ": joint " + quote(j.name) + ": mimic joint " +
                              quote(j.mimic->joint_name);
-    auto it = body_of_joint.find(j.mimic->joint_name);
-    if (it == body_of_joint.end()) fail(ST_ERR_MODEL, what + ": no such joint");
+    auto it = t.body_of_joint.find(j.mimic->joint_name);
+    if (it == t.body_of_joint.end()) fail(ST_ERR_MODEL, what + ": no such joint");
     if (it->second == b) fail(ST_ERR_MODEL, what + ": a joint cannot mimic itself");
     if (m->jnt_type[it->second] != ST_JOINT_REVOLUTE)
       fail(ST_ERR_MODEL, what + ": the mimicked joint is fixed");
@@ -721,50 +736,57 @@ ModelPtr load(const std::string &file, const std::string &dir, const std::string
     m->jnt_mimic_mult[b] = j.mimic->multiplier;
     m->jnt_mimic_offset[b] = j.mimic->offset;
   }
+}
 
-  // ---- geoms and mesh arrays
+// geoms and mesh arrays (shapes checked by gather_geoms)
+void fill_geoms(stModel *m, const Geoms &geoms) {
   int v0 = 0, t0 = 0;
-  for (size_t g = 0; g < geoms.size(); g++) {
-    const GeomSrc &src = geoms[g];
-    const urdf::Collision &c = *src.col;
-    const std::string what = file + ": link " + quote(links[src.body]->name) + ": collision " +
-                             std::to_string(g + 1);
+  for (size_t g = 0; g < geoms.src.size(); g++) {
+    const GeomSrc &src = geoms.src[g];
+    const urdf::Geometry &geo = *src.col->geometry;
     m->geom_body[g] = src.body;
-    store_vec(c.origin.position, m->geom_pos[g]);
-    store_rot(c.origin.rotation, m->geom_rot[g]);
+    store_vec(src.col->origin.position, m->geom_pos[g]);
+    store_rot(src.col->origin.rotation, m->geom_rot[g]);
     double *size = m->geom_size[g];
-    switch (c.geometry->type) {
-      case urdf::Geometry::SPHERE:
-        m->geom_type[g] = ST_GEOM_SPHERE;
-        size[0] = static_cast<const urdf::Sphere &>(*c.geometry).radius;
-        break;
-      case urdf::Geometry::BOX: {
-        m->geom_type[g] = ST_GEOM_BOX;
-        store_vec(static_cast<const urdf::Box &>(*c.geometry).dim, size);
-        break;
-      }
-      case urdf::Geometry::CYLINDER: {
-        const auto &cyl = static_cast<const urdf::Cylinder &>(*c.geometry);
-        m->geom_type[g] = ST_GEOM_CYLINDER;
-        size[0] = cyl.radius;
-        size[1] = cyl.length;
-        break;
-      }
-      case urdf::Geometry::MESH: {
-        const MeshData &md = meshes[src.mesh];
-        m->geom_type[g] = ST_GEOM_MESH;
-        m->geom_vert0[g] = v0;
-        m->geom_nvert[g] = static_cast<int>(md.vert.size());
-        m->geom_tri0[g] = t0;
-        m->geom_ntri[g] = static_cast<int>(md.tri.size());
-        for (const auto &v : md.vert) std::copy(v.begin(), v.end(), m->mesh_vert[v0++]);
-        for (const auto &t : md.tri) std::copy(t.begin(), t.end(), m->mesh_tri[t0++]);
-        break;
-      }
-      default:
-        fail(ST_ERR_MODEL, what + ": unknown geometry type");
+    if (geo.type == urdf::Geometry::SPHERE) {
+      m->geom_type[g] = ST_GEOM_SPHERE;
+      size[0] = static_cast<const urdf::Sphere &>(geo).radius;
+    } else if (geo.type == urdf::Geometry::BOX) {
+      m->geom_type[g] = ST_GEOM_BOX;
+      store_vec(static_cast<const urdf::Box &>(geo).dim, size);
+    } else if (geo.type == urdf::Geometry::CYLINDER) {
+      m->geom_type[g] = ST_GEOM_CYLINDER;
+      size[0] = static_cast<const urdf::Cylinder &>(geo).radius;
+      size[1] = static_cast<const urdf::Cylinder &>(geo).length;
+    } else {
+      const MeshData &md = geoms.meshes[src.mesh];
+      m->geom_type[g] = ST_GEOM_MESH;
+      m->geom_vert0[g] = v0;
+      m->geom_nvert[g] = static_cast<int>(md.vert.size());
+      m->geom_tri0[g] = t0;
+      m->geom_ntri[g] = static_cast<int>(md.tri.size());
+      for (const auto &v : md.vert) std::copy(v.begin(), v.end(), m->mesh_vert[v0++]);
+      for (const auto &tr : md.tri) std::copy(tr.begin(), tr.end(), m->mesh_tri[t0++]);
     }
   }
+}
+
+// file: the name messages give; dir: where relative mesh paths start
+ModelPtr load(const std::string &file, const std::string &dir, const std::string &text) {
+  const urdf::ModelInterfaceSharedPtr urdf_model = parse_text(file, text);
+  const Tree t = order_bodies(file, text, *urdf_model);
+  const Geoms geoms = gather_geoms(file, dir, t);
+  const int nbody = static_cast<int>(t.links.size());
+  ModelPtr model(st__model_alloc(nbody, static_cast<int>(geoms.src.size()),
+                                 static_cast<int>(geoms.nvert), static_cast<int>(geoms.ntri)));
+  if (!model) throw std::bad_alloc();
+  stModel *m = model.get();
+  for (int b = 0; b < nbody; b++) {
+    fill_body(file, m, b, *t.links[b], t.parent_body[b]);
+    if (b > 0) fill_joint(file, m, b, *t.parent_joint[b]);
+  }
+  fill_mimics(file, m, t);
+  fill_geoms(m, geoms);
   return model;
 }
 
