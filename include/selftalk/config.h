@@ -216,8 +216,11 @@ int st_config_find(const char *section, const char *name);
 void st_config_default(stConfig *cfg);
 
 /* Reads an INI file over cfg (keys the file does not name keep their value: call
- * st_config_default first). Rejects a missing file, unknown sections and keys, duplicate keys,
- * malformed or out-of-range values and inconsistent combinations, naming file and line. */
+ * st_config_default first). Rejects a missing file, one larger than ST_FILE_MAX or holding a
+ * NUL byte, unknown sections and keys, duplicate keys, malformed or out-of-range values, string
+ * values a config file cannot hold as they are (a ';' or '#' at the start or after a space,
+ * control characters, white space around them) and inconsistent combinations, naming file and
+ * line. */
 stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz);
 
 /* Applies one "section.key=value" override and checks the cross-key rules. */

@@ -110,9 +110,10 @@ typedef struct stGenomeSet {
   int *generation;     /* count values; -1 where the file gave none */
 } stGenomeSet;
 
-/* Reads every genotype of a file. Each must have 612, 696 or 756 genes (or, when
- * expect_genes > 0, exactly that many), agreeing with any "# genes" line. Errors name the
- * file and line: "FILE:LINE: genotype: non-hex character 'x' at column 17 (expected 4
+/* Reads every genotype of a file (through st_file_read: at most ST_FILE_MAX bytes, no NUL
+ * byte). Each must have 612, 696 or 756 genes (or, when expect_genes > 0, exactly that many),
+ * agreeing with any "# genes" line; "# fitness" and "# generation" values must parse. Errors
+ * name the file and line: "FILE:LINE: genotype: non-hex character 'x' at column 17 (expected 4
  * lower-case hex digits per gene)". On success the caller frees set with st_genome_set_free. */
 stStatus st_genome_set_read(const char *path, int expect_genes, stGenomeSet *set, char *err,
                             size_t errsz);

@@ -74,9 +74,14 @@ typedef struct stModel {
   void *buffer_;           /* the one allocation */
 } stModel;
 
-/* Imports a URDF (urdfdom; meshes through assimp, relative to the URDF's directory). Errors
- * name the file and the element: "FILE: link 'l_hand': collision mesh 'x.stl': cannot read
- * (...)". On success *model is owned by the caller (st_model_destroy). */
+/* Imports a URDF (urdfdom; meshes through assimp, relative to the URDF's directory). Refuses
+ * what the world cannot simulate (docs/PROTOCOL.md, "Input files and faults"): shape sizes
+ * outside [1e-6, 10] m, origins farther than 10 m, masses outside [1e-6, 1e3] kg, inertias not
+ * positive definite, above 1e3 kg m^2 or breaking the triangle inequality, joint limits beyond
+ * +-2 pi, loops of joints, meshes that are not regular files of at most ST_FILE_MAX bytes or
+ * reach beyond 100 m. Errors name the file and the element: "FILE: link 'l_hand': collision
+ * mesh 'x.stl': cannot read (...)". On success *model is owned by the caller
+ * (st_model_destroy). */
 stStatus st_model_load_urdf(const char *path, stModel **model, char *err, size_t errsz);
 
 /* Nullable: model. */
