@@ -194,7 +194,7 @@ $(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_OBJ) $(HEADERS)
 # the inputs fuzzing found (tests/fuzz/regressions/TARGET/: each is a regression test too)
 FUZZ_SEEDS_config := configs/*.cfg
 FUZZ_SEEDS_genome := data/evolved/*.genome data/evolved/*/population.genome tests/golden/*.genome
-FUZZ_SEEDS_urdf := data/*.urdf
+FUZZ_SEEDS_urdf := data/*.urdf tests/fuzz/seeds/urdf/*
 FUZZ_SEEDS_checkpoint := tests/fuzz/seeds/checkpoint/*
 $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 	@mkdir -p $(@D)
@@ -209,6 +209,7 @@ fuzz-run: fuzz
 	  echo "== fuzz_$$t: -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_TIME)"; \
 	  if TMPDIR=/dev/shm nice -n 19 ./$(FUZZ_DIR)/fuzz_$$t -runs=$(FUZZ_RUNS) \
 	       -max_total_time=$(FUZZ_TIME) -timeout=10 -print_final_stats=1 \
+	       $$(test -f tests/fuzz/$$t.dict && echo -dict=tests/fuzz/$$t.dict) \
 	       -artifact_prefix=$(FUZZ_DIR)/$$t- $(FUZZ_DIR)/corpus/$$t > $(FUZZ_DIR)/$$t.log 2>&1; then \
 	    grep -E '^(Done|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)' $(FUZZ_DIR)/$$t.log; \
 	  else bad=1; tail -40 $(FUZZ_DIR)/$$t.log; fi; \
