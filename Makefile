@@ -202,14 +202,15 @@ $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 	@touch $@
 
 # each target for FUZZ_RUNS executions (or FUZZ_TIME seconds), one after the other, niced (the
-# machine's evolution runs come first); a hang is an input that takes over 10 s, a leak fails
+# machine's evolution runs come first), with the flags of tests/fuzz/TARGET.options (a
+# dictionary, a length limit); a hang is an input that takes over 10 s, a leak fails
 # like a crash; what libFuzzer finds goes to build-fuzz/TARGET-crash-*, -leak-*, -timeout-*
 fuzz-run: fuzz
 	@bad=0; for t in $(FUZZ_TARGETS); do \
 	  echo "== fuzz_$$t: -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_TIME)"; \
 	  if TMPDIR=/dev/shm nice -n 19 ./$(FUZZ_DIR)/fuzz_$$t -runs=$(FUZZ_RUNS) \
 	       -max_total_time=$(FUZZ_TIME) -timeout=10 -print_final_stats=1 \
-	       $$(test -f tests/fuzz/$$t.dict && echo -dict=tests/fuzz/$$t.dict) \
+	       $$(cat tests/fuzz/$$t.options 2> /dev/null) \
 	       -artifact_prefix=$(FUZZ_DIR)/$$t- $(FUZZ_DIR)/corpus/$$t > $(FUZZ_DIR)/$$t.log 2>&1; then \
 	    grep -E '^(Done|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)' $(FUZZ_DIR)/$$t.log; \
 	  else bad=1; tail -40 $(FUZZ_DIR)/$$t.log; fi; \
