@@ -176,6 +176,7 @@ FUZZ_RUNS ?= 1000000
 FUZZ_TIME ?= 1200
 
 fuzz: $(FUZZ_BIN) $(FUZZ_TARGETS:%=$(FUZZ_DIR)/corpus/%/.seeded)
+.SECONDARY: $(FUZZ_OBJ) # kept: a changed reader recompiles alone
 
 $(FUZZ_DIR)/obj/%.o: lib/%.c $(HEADERS)
 	@command -v $(FUZZ_CC) > /dev/null || { echo "make fuzz: $(FUZZ_CC) not found (apt-get install clang)"; exit 1; }
