@@ -291,6 +291,12 @@ static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value
         return ST_ERR_RANGE;
       }
       if (str_unwritable(value, msg, n)) return ST_ERR_PARSE;
+      if (strlen(k->name) + 3 + strlen(value) > INI_MAX_LINE - 2) {
+        snprintf(msg, n, "value of %zu characters too long for a config line (expected at most "
+                 "%zu: '%s = VALUE' must fit the %d characters of a line)", strlen(value),
+                 (size_t)(INI_MAX_LINE - 2) - 3 - strlen(k->name), k->name, INI_MAX_LINE - 2);
+        return ST_ERR_RANGE;
+      }
       /* the whole field: configs are compared with memcmp (resume) */
       memset(FIELD(cfg, k, char), 0, ST_CONFIG_STR_MAX);
       st__strlcpy(FIELD(cfg, k, char), value, ST_CONFIG_STR_MAX);
@@ -576,7 +582,11 @@ static char *reader(char *str, int num, void *stream) {
       }
     }
   }
-  if (strlen(L->buf) + 1 > (size_t)num) {
+  /* num - 2 characters and the newline: the same for a last line without one (a line the
+   * writer could not write back otherwise) */
+  size_t len = strlen(L->buf);
+  if (len && L->buf[len - 1] == '\n') len--;
+  if (len + 2 > (size_t)num) {
     char lim[32];
     snprintf(lim, sizeof lim, "%d", num - 2);
     fail(L, ST_ERR_PARSE, "line longer than %s characters (expected a shorter line)%s%s", lim, "",

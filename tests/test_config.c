@@ -176,6 +176,34 @@ static void test_config_unwritable_strings(void) {
   CU_ASSERT_EQUAL(st_config_set(&c, "stage.primitives= reach", err, sizeof err), ST_ERR_PARSE);
   ST_ASSERT_CONTAINS(err, "white space around the value");
   CU_ASSERT_EQUAL(st_config_set(&c, "robot.urdf=a;b#c", err, sizeof err), ST_OK); /* no space: kept */
+  /* lines: 198 characters, with or without the last newline (fuzz_config: a last line of 199
+   * was accepted and, written back with its newline, refused); a value must fit a line as the
+   * writer writes it, "name = value" ("init_population = " leaves 198 - 18 = 180) */
+  char text[400], v[200];
+  memset(v, 'v', sizeof v);
+  snprintf(text, sizeof text, "[stage]\ninit_population=%.*s", 181, v); /* 197 characters */
+  st_test_write_tmp(path, sizeof path, ".cfg", text);
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, ":2: key 'stage.init_population': value of 181 characters too long for "
+                          "a config line (expected at most 180: 'init_population = VALUE' must fit "
+                          "the 198 characters of a line)");
+  snprintf(text, sizeof text, "[stage]\ninit_population=%.*s", 180, v);
+  st_test_write_tmp(path, sizeof path, ".cfg", text);
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_OK);
+  snprintf(text, sizeof text, "[stage]\n# %.*s", 197, v); /* 199 characters, no newline */
+  st_test_write_tmp(path, sizeof path, ".cfg", text);
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, ":2: line longer than 198 characters");
+  snprintf(text, sizeof text, "[stage]\n# %.*s", 196, v); /* 198 characters */
+  st_test_write_tmp(path, sizeof path, ".cfg", text);
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_OK);
+  snprintf(text, sizeof text, "[stage]\n# %.*s\n", 196, v); /* the same with its newline */
+  st_test_write_tmp(path, sizeof path, ".cfg", text);
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_OK);
+  snprintf(text, sizeof text, "[stage]\n# %.*s\n", 197, v);
+  st_test_write_tmp(path, sizeof path, ".cfg", text);
+  CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_ERR_PARSE);
   /* a value set over a longer one is the same configuration as the value set alone (resume
    * compares configurations byte for byte) */
   stConfig a, b;
