@@ -174,6 +174,7 @@ FUZZ_OBJ := $(FUZZ_LIB:%=$(FUZZ_DIR)/obj/%.o)
 FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
 FUZZ_RUNS ?= 1000000
 FUZZ_TIME ?= 1200
+FUZZ_NICE ?= 19
 
 fuzz: $(FUZZ_BIN) $(FUZZ_TARGETS:%=$(FUZZ_DIR)/corpus/%/.seeded)
 .SECONDARY: $(FUZZ_OBJ) # kept: a changed reader recompiles alone
@@ -209,7 +210,7 @@ $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 fuzz-run: fuzz
 	@bad=0; for t in $(FUZZ_TARGETS); do \
 	  echo "== fuzz_$$t: -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_TIME)"; \
-	  if TMPDIR=/dev/shm nice -n 19 ./$(FUZZ_DIR)/fuzz_$$t -runs=$(FUZZ_RUNS) \
+	  if TMPDIR=/dev/shm nice -n $(FUZZ_NICE) ./$(FUZZ_DIR)/fuzz_$$t -runs=$(FUZZ_RUNS) \
 	       -max_total_time=$(FUZZ_TIME) -timeout=10 -print_final_stats=1 \
 	       $$(cat tests/fuzz/$$t.options 2> /dev/null) \
 	       -artifact_prefix=$(FUZZ_DIR)/$$t- $(FUZZ_DIR)/corpus/$$t > $(FUZZ_DIR)/$$t.log 2>&1; then \

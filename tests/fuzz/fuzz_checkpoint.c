@@ -3,7 +3,7 @@
  * optionally "\n#--- fitness.csv\n" and that file's bytes, then "\n#--- best.genome\n" and
  * that file's (the seed, tests/fuzz/seeds/checkpoint, is a short run's three files so joined):
  * the two files are written to a private directory and checked against the checkpoint as
- * --resume does. The run: simple-prim then main-prim, 4 genotypes of 612 genes, 1500
+ * --resume does. The run: simple-prim then main-prim, 2 genotypes of 612 genes, 1500
  * generations. Property: an accepted checkpoint's fields are in the ranges the header
  * promises, and the files are at least as long as it records. */
 #define _POSIX_C_SOURCE 200809L
@@ -17,7 +17,7 @@
 #include "checkpoint.h"
 #include "readers.h"
 
-static const stCheckpointRun RUN = {2, 4, 612, 1500};
+static const stCheckpointRun RUN = {2, 2, 612, 1500};
 static const char SEP_CSV[] = "\n#--- fitness.csv\n", SEP_BEST[] = "\n#--- best.genome\n";
 static char g_csv[256], g_best[256];
 
