@@ -25,15 +25,15 @@ tmpfs() { # DIR SIZE
   mkdir -p "$1" && mount -t tmpfs -o "size=$2" tmpfs "$1" 2> /dev/null || return 1
   mounts+=("$1")
 }
-can_mount=0
-tmpfs "$tmp/probe" 64k && can_mount=1
+can_mount=0 # ST_FAULTS_NO_MOUNT=1 takes the paths of a machine without mount(2)
+[ "${ST_FAULTS_NO_MOUNT:-0}" = 1 ] || { tmpfs "$tmp/probe" 64k && can_mount=1; }
 
 # stopped NAME DIR RC NEEDLE: the faulted run in DIR exited RC with stderr $tmp/e; it must have
 # stopped mid-run with NEEDLE in its message and no temporary file left; then a resume in DIR
 # (the fault gone) must end with the uninterrupted run's files
 stopped() {
   local name=$1 dir=$2 rc=$3 needle=$4 rows
-  rows=$(($(wc -l < "$dir/fitness.csv" 2> /dev/null || echo 1) - 1))
+  rows=$(($(wc -l 2> /dev/null < "$dir/fitness.csv" || echo 1) - 1))
   if [ "$rc" = 0 ]; then ko "$name: stops" "exit 0 ($rows generations)"; return; fi
   if ! grep -qF -- "$needle" "$tmp/e"; then ko "$name: stops" "expected '$needle' in: $(cat "$tmp/e")"; return; fi
   if [ "$rows" -lt 1 ] || [ "$rows" -ge $G ]; then ko "$name: stops mid-run" "$rows generations written"; return; fi
@@ -56,7 +56,7 @@ run_bg() {
 # waits until DIR/fitness.csv has N generations (or the run ended)
 wait_rows() { # DIR N
   for _ in $(seq 500); do
-    [ "$(wc -l < "$1/fitness.csv" 2> /dev/null || echo 0)" -gt "$2" ] && return 0
+    [ "$(wc -l 2> /dev/null < "$1/fitness.csv" || echo 0)" -gt "$2" ] && return 0
     kill -0 "$pid" 2> /dev/null || return 1
     sleep 0.02
   done
