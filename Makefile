@@ -39,10 +39,15 @@ CPPFLAGS_ALL = -Iinclude -Ilib $(PKG_CFLAGS)
 CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(CFLAGS)
 CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
 
-# the core needs no simulator: a robot controller can link the network, GA and config alone
-CORE_MODULES := base rng config genome net ga prediction assemble
-CORE_SRC := $(CORE_MODULES:%=lib/%.c)
-SIM_SRC := $(filter-out $(CORE_SRC),$(wildcard lib/*.c)) $(wildcard lib/*.cpp)
+# lib/ by layer: core (network, GA, config, genomes, statistics: no simulator, so a robot
+# controller can link them alone), model (URDF, kinematics), world (kinematic and ODE
+# backends), task (postures, fitness, caretaker, scripted controller), episode (the one
+# episode loop and its trials), run (evolution). Objects mirror the folders under build/obj/.
+LAYERS := core model world task episode run
+STRAY_SRC := $(filter-out $(LAYERS:%=lib/%/),$(sort $(dir $(wildcard lib/*.c lib/*.cpp lib/*/*.c lib/*/*.cpp))))
+$(if $(STRAY_SRC),$(error sources outside the layer folders ($(STRAY_SRC)): move them into one of lib/{$(LAYERS)}/ or add a layer to LAYERS))
+CORE_SRC := $(wildcard lib/core/*.c)
+SIM_SRC := $(foreach l,$(filter-out core,$(LAYERS)),$(wildcard lib/$(l)/*.c lib/$(l)/*.cpp))
 CORE_OBJ := $(CORE_SRC:lib/%.c=$(BUILD)/obj/%.o)
 SIM_OBJ := $(patsubst lib/%,$(BUILD)/obj/%.o,$(basename $(SIM_SRC)))
 
@@ -61,7 +66,7 @@ TOOLS := $(patsubst tools/%.c,$(BUILD)/%,$(wildcard tools/*.c))
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(BUILD)/run_tests
 
-HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*.h)
+HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
   libassimp-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind
@@ -88,9 +93,11 @@ deps:
 	fi
 
 $(BUILD)/obj/%.o: lib/%.c $(HEADERS) | $(BUILD)/obj
+	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -c $< -o $@
 
 $(BUILD)/obj/%.o: lib/%.cpp $(HEADERS) | $(BUILD)/obj
+	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS_ALL) $(CXXFLAGS_ALL) -c $< -o $@
 
 $(BUILD)/obj $(BUILD)/tobj:

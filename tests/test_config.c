@@ -202,7 +202,7 @@ static void test_config_stage_keys(void) {
 
   const unsigned S = ST_CONFIG_SIMPLE_PRIM, M = ST_CONFIG_MAIN_PRIM, I = ST_CONFIG_INTEGRATED;
   const unsigned ALL = ST_CONFIG_ALL_STAGES;
-  /* the integrated stage (lib/integrated.c, intscore.c) reads eq. 2.12 inside eq. 2.14, the
+  /* the integrated stage (lib/episode/integrated.c, intscore.c) reads eq. 2.12 inside eq. 2.14, the
    * object-moving penalty, fail_penalty and the dynamic world; not the grasp postures, the
    * harmonic mean or the object-touching penalty. The issue-12 hand's keys: the dynamic
    * world's and a grasp posture's. */

@@ -258,7 +258,7 @@ stStatus st_config_check_number(const char *section, const char *name, double va
                                 size_t errsz);
 
 /* ---- Which stages read which keys ----
- * Most keys are read by every stage. Those that only some stages read are listed in lib/config.c
+ * Most keys are read by every stage. Those that only some stages read are listed in lib/core/config.c
  * (stage_keys[]) with the stages that read them; an evolution run refuses a value other than
  * the default for a key none of its stages reads (a key acts or is refused, never silently
  * ignored). A stage that starts reading a key adds its bit to the key's row. */

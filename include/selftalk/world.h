@@ -40,7 +40,7 @@ typedef struct stWorld {
   long step;              /* control steps since reset */
   int reference_contacts; /* 1: test every geometry with ODE's narrow phase, no culling or
                              shortcuts (slow; for validation and as a benchmark baseline) */
-  void *internal_;        /* the kinematic or dynamic backend's state (lib/world_backend.h) */
+  void *internal_;        /* the kinematic or dynamic backend's state (lib/world/world_backend.h) */
   int dynamic;            /* 1 for a world of st_world_create_dynamic (set at creation) */
 } stWorld;
 
@@ -69,7 +69,7 @@ void st_world_update(stWorld *w);
 /* World position of a point given in a body's frame. */
 void st_world_point(const stWorld *w, int body, const double local[3], double out[3]);
 
-/* ---- dynamic mode (thesis §2.1, SPEC §3; lib/dynworld.c, docs/PROTOCOL.md "Dynamic mode") --
+/* ---- dynamic mode (thesis §2.1, SPEC §3; lib/world/dynworld.c, docs/PROTOCOL.md "Dynamic mode") --
  * An ODE world per stWorld: the robot's links as rigid bodies (massless frames and fixed-joint
  * children folded into their parent body; the root fixed to the world), hinge joints with
  * stops and velocity motors of bounded torque, the table (static box), the object (sphere with

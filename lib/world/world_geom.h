@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT
- * libselftalk: ODE geometry shared by the two world backends (lib/kinworld.c, lib/dynworld.c):
+ * libselftalk: ODE geometry shared by the two world backends (lib/world/kinworld.c, lib/world/dynworld.c):
  * the robot's collision shapes, the scene's table and object, bounding volumes and the 3x3
  * arithmetic they need; not installed. Matrices are row-major 3x3 (world <- local). */
 #ifndef SELFTALK_WORLD_GEOM_H

@@ -29,9 +29,9 @@
 #include <urdf_parser/urdf_parser.h>
 
 extern "C" {
-#include "internal.h"
+#include "core/internal.h"
 }
-#include "model_internal.h"
+#include "model/model_internal.h"
 #include "selftalk/model.h"
 
 namespace {

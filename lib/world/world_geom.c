@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: MIT
  * ODE geometry shared by the kinematic and the dynamic world (see world_geom.h). */
-#include "world_geom.h"
+#include "world/world_geom.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "internal.h"
+#include "core/internal.h"
 
 /* ---- the robot's collision shapes -------------------------------------------------------- */
 

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: MIT
  * libselftalk: the robot model's storage (one allocation) and look-ups. The URDF importer is
- * lib/model_urdf.cpp. */
+ * lib/model/model_urdf.cpp. */
 #include "selftalk/model.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "model_internal.h"
+#include "model/model_internal.h"
 
 /* every array starts on this boundary (enough for double and int) */
 #define ST_MODEL_ALIGN 16

@@ -11,7 +11,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "internal.h"
+#include "core/internal.h"
 #include "selftalk/genome.h"
 
 /* ---- the key table, generated from ST_CONFIG_KEYS ---- */

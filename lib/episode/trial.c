@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "core/internal.h"
 
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
   const stConfig *c = &p->cfg;

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT
- * libselftalk: ODE set-up shared by the worlds (lib/ode_util.c), and the per-thread replacement
- * of ODE's random generator and warning counter (lib/ode_rand.c); not installed. */
+ * libselftalk: ODE set-up shared by the worlds (lib/world/ode_util.c), and the per-thread replacement
+ * of ODE's random generator and warning counter (lib/world/ode_rand.c); not installed. */
 #ifndef SELFTALK_ODE_UTIL_H
 #define SELFTALK_ODE_UTIL_H
 
@@ -10,7 +10,7 @@
  * calling thread (ODE requires it of every thread that calls it). */
 void st__ode_init(void);
 
-/* The calling thread's replacement of ODE's random generator (lib/ode_rand.c): dRand,
+/* The calling thread's replacement of ODE's random generator (lib/world/ode_rand.c): dRand,
  * dRandInt, dRandReal, dRandGetSeed and dRandSetSeed are defined by the library over one
  * 32-bit state per thread, so that every world can load its own state before a quickstep
  * and store it afterwards. st__ode_rand_calls counts the draws made on this thread (for the

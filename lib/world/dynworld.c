@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT
- * Dynamic world backend (thesis §2.1, SPEC §3; lib/world_backend.h): the robot, the table and
+ * Dynamic world backend (thesis §2.1, SPEC §3; lib/world/world_backend.h): the robot, the table and
  * the object as an ODE world. See selftalk/world.h for the contract and docs/PROTOCOL.md
  * ("Dynamic mode") for the physical parameters, their reasons and the measurements behind
- * them. The geometries come from lib/world_geom.c, shared with the kinematic world.
+ * them. The geometries come from lib/world/world_geom.c, shared with the kinematic world.
  *
  * Bodies: every link moved by a revolute joint starts an ODE body; links on fixed joints
  * (massless frames, the knuckles, torso_2, l_upper_arm) are folded into the body of their
@@ -23,7 +23,7 @@
  * run pair by pair in a fixed order (no ODE space, whose geom lists reorder as geoms move);
  * each world has its own ODE threading implementation (ODE's default one is one object shared
  * by the whole process); quickstep's row shuffling draws from the world's own generator state
- * (lib/ode_rand.c), loaded before and stored after every quickstep. */
+ * (lib/world/ode_rand.c), loaded before and stored after every quickstep. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <ode/ode.h>
@@ -33,12 +33,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
-#include "model_internal.h"
-#include "ode_util.h"
+#include "core/internal.h"
+#include "model/model_internal.h"
+#include "world/ode_util.h"
 #include "selftalk/rng.h"
-#include "world_backend.h"
-#include "world_geom.h"
+#include "world/world_backend.h"
+#include "world/world_geom.h"
 
 /* what a robot geometry (geoms.g[i] for model geometry i) touches */
 typedef struct dynGeom {
@@ -420,7 +420,7 @@ static void attach_geom(stWorld *w, dynInternal *d, int i) {
   dg->touch = r->body_touch[l];
 }
 
-/* the robot's geometries (lib/world_geom.c), each attached */
+/* the robot's geometries (lib/world/world_geom.c), each attached */
 static stStatus create_geoms(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   stStatus st = st__robot_geoms_create(w->robot->model, 1, &d->geoms, err, errsz);
   if (st) return st;

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include "core/internal.h"
 
 stPredDef st_pred_default_def(void) {
   stPredDef d = {20, 5, 10.0, 100.0};

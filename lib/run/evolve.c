@@ -11,7 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "internal.h"
+#include "core/internal.h"
 #include "selftalk/assemble.h"
 #include "selftalk/ga.h"
 #include "selftalk/integrated.h"

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT
- * libselftalk: the interface between lib/world.c, which owns the public st_world_* functions,
- * and the two backends it dispatches to: kinematic (lib/kinworld.c) and dynamic
- * (lib/dynworld.c). The backends never call each other nor the public st_world_* functions;
- * what they share is in lib/world_geom.h. Not installed. */
+ * libselftalk: the interface between lib/world/world.c, which owns the public st_world_* functions,
+ * and the two backends it dispatches to: kinematic (lib/world/kinworld.c) and dynamic
+ * (lib/world/dynworld.c). The backends never call each other nor the public st_world_* functions;
+ * what they share is in lib/world/world_geom.h. Not installed. */
 #ifndef SELFTALK_WORLD_BACKEND_H
 #define SELFTALK_WORLD_BACKEND_H
 
@@ -11,11 +11,11 @@
 #include "selftalk/world.h"
 
 /* The operations of one kind of world. Those of the first block are required. A NULL in the
- * second block means the backend has no dynamics, and lib/world.c answers as world.h says a
+ * second block means the backend has no dynamics, and lib/world/world.c answers as world.h says a
  * kinematic world does: step is then st_world_step_kinematic (the actuation law on qhat, then
  * update), the others have no effect, return 0 or "", or leave info zeroed. */
 typedef struct stWorldBackend {
-  /* frees the backend's state (w->internal_), also one left by a failed creation; lib/world.c
+  /* frees the backend's state (w->internal_), also one left by a failed creation; lib/world/world.c
    * frees the stWorld and its pose arrays */
   void (*destroy)(stWorld *w);
   /* sets qhat (or the state it is read from), obj, obj_start, target and step = 0, then does
@@ -40,9 +40,9 @@ typedef struct stWorldHead {
   const stWorldBackend *backend;
 } stWorldHead;
 
-/* Creation of a backend's state into a world that lib/world.c has allocated (robot, scene,
+/* Creation of a backend's state into a world that lib/world/world.c has allocated (robot, scene,
  * R and p set, everything else zero). On failure the backend may leave partial state in
- * w->internal_ (its head set): lib/world.c then destroys the world through it. */
+ * w->internal_ (its head set): lib/world/world.c then destroys the world through it. */
 stStatus st__kin_create(stWorld *w, char *err, size_t errsz);
 stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz);
 

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L
-#include "ode_util.h"
+#include "world/ode_util.h"
 
 #include <ode/ode.h>
 #include <pthread.h>

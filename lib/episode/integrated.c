@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "core/internal.h"
 #include "selftalk/integrated.h"
 
 void st_int_episode(const stProtocol *p, const stIntegratedDef *def, int k, int t, stRng *rng,

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: MIT
  * The public st_world_* functions: allocation of an stWorld and dispatch to its backend,
- * kinematic (lib/kinworld.c) or dynamic (lib/dynworld.c), through the operations its state
- * carries (lib/world_backend.h). */
+ * kinematic (lib/world/kinworld.c) or dynamic (lib/world/dynworld.c), through the operations its state
+ * carries (lib/world/world_backend.h). */
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
-#include "world_backend.h"
-#include "world_geom.h"
+#include "core/internal.h"
+#include "world/world_backend.h"
+#include "world/world_geom.h"
 
 static const stWorldBackend *backend(const stWorld *w) {
   return ((const stWorldHead *)w->internal_)->backend;

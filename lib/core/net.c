@@ -2,7 +2,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include "core/internal.h"
 #include "selftalk/net.h"
 
 stNetDef st_net_def_from_config(const stConfig *cfg) {

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "core/internal.h"
 #include "selftalk/caretaker.h"
 
 /* ---- protocol and workspace ---- */

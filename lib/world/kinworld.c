@@ -1,17 +1,17 @@
 /* SPDX-License-Identifier: MIT
- * Kinematic world backend (lib/world_backend.h): forward kinematics of qhat, and contact
+ * Kinematic world backend (lib/world/world_backend.h): forward kinematics of qhat, and contact
  * detection with ODE's collision functions (no dynamics world is involved). Its step is the
- * kinematic actuation law, which lib/world.c applies to qhat before calling update. */
+ * kinematic actuation law, which lib/world/world.c applies to qhat before calling update. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <ode/ode.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
-#include "ode_util.h"
-#include "world_backend.h"
-#include "world_geom.h"
+#include "core/internal.h"
+#include "world/ode_util.h"
+#include "world/world_backend.h"
+#include "world/world_geom.h"
 
 typedef struct kinInternal {
   stWorldHead head;
@@ -197,7 +197,7 @@ static void kin_joint_angles(const stWorld *w, double *angle) {
   st_robot_angles(w->robot, w->qhat, angle);
 }
 
-/* no dynamics: the step is the actuation law (lib/world.c), the dynamic queries have their
+/* no dynamics: the step is the actuation law (lib/world/world.c), the dynamic queries have their
  * defaults */
 static const stWorldBackend kin_backend = {
     .destroy = kin_destroy,

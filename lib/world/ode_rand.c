@@ -7,7 +7,7 @@
  * same names and signatures in the program (here, linked through libselftalk) take
  * precedence, and ODE's shuffling then draws from the calling thread's own state. The dynamic
  * world loads its per-trial state before each quickstep and stores it after, so a trial's
- * draws do not even depend on other worlds stepped by the same thread. lib/dynworld.c checks
+ * draws do not even depend on other worlds stepped by the same thread. lib/world/dynworld.c checks
  * at run time that the interposition is effective.
  *
  * The generator is ODE's own: the 32-bit linear congruential generator
@@ -20,12 +20,12 @@
 #include <stdarg.h>
 #include <stdint.h>
 
-#include "ode_util.h"
+#include "world/ode_util.h"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define ST_THREAD_LOCAL __thread
 #else
-#error "lib/ode_rand.c needs thread-local storage (__thread); add your compiler's keyword"
+#error "lib/world/ode_rand.c needs thread-local storage (__thread); add your compiler's keyword"
 #endif
 
 static ST_THREAD_LOCAL uint32_t g_state;

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT
- * libselftalk: internals of the robot model shared by lib/model.c and the URDF importer
- * (lib/model_urdf.cpp); not installed. */
+ * libselftalk: internals of the robot model shared by lib/model/model.c and the URDF importer
+ * (lib/model/model_urdf.cpp); not installed. */
 #ifndef SELFTALK_MODEL_INTERNAL_H
 #define SELFTALK_MODEL_INTERNAL_H
 

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
-#include "model_internal.h"
+#include "core/internal.h"
+#include "model/model_internal.h"
 
 int st__split_names(const char *list, char names[][ST_NAME_MAX], int max) {
   int n = 0;
