@@ -39,8 +39,9 @@ CPPFLAGS_ALL = -Iinclude -Ilib $(PKG_CFLAGS)
 CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(CFLAGS)
 CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
 
-# the core needs no simulator: a robot controller can link the network, GA and config alone
-CORE_MODULES := base rng config genome net ga prediction assemble
+# the core needs no simulator: a robot controller can link the network, GA and config alone, an
+# analysis the statistics (selftalk/stats.h)
+CORE_MODULES := base rng config genome net ga prediction assemble stats
 CORE_SRC := $(CORE_MODULES:%=lib/%.c)
 SIM_SRC := $(filter-out $(CORE_SRC),$(wildcard lib/*.c)) $(wildcard lib/*.cpp)
 CORE_OBJ := $(CORE_SRC:lib/%.c=$(BUILD)/obj/%.o)
