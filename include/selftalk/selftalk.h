@@ -13,6 +13,7 @@
 #include "selftalk/net.h"
 #include "selftalk/prediction.h"
 #include "selftalk/rng.h"
+#include "selftalk/stats.h"
 /* the simulator side (links ODE, urdfdom, assimp): robot, world, sensors, stages */
 #include "selftalk/caretaker.h"
 #include "selftalk/episode.h"
