@@ -6,6 +6,8 @@
 #   make asan       tests under AddressSanitizer + UBSan
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
+#   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable
+#                   (tools/replicate.mk; README.md, "Replicating the study")
 #   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
 #                   to move results (tests/check_golden.sh)
 #   make install PREFIX=/usr/local
@@ -76,6 +78,7 @@ RUN_CONFIG := configs/simple_prim.cfg
 RUN_DIR := runs/simple_prim-s1
 
 .PHONY: all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
+  replicate replicate-only \
   bench-only golden-update install uninstall clean
 .DELETE_ON_ERROR:
 
@@ -132,10 +135,14 @@ $(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FU
 	  $(FULL_A) $(LIBS_TEST) $(LIBS_SIM) $(LIBS_CORE)
 
 # the targets that set up first: deps, then a fresh make that computes the flags (pkg_flags)
-test run asan valgrind bench: deps
+test run asan valgrind bench replicate: deps
 	@$(MAKE) --no-print-directory $@-only
 
 # the main job: the simple-prim stage, then what it gave (summary, files, PNG plot)
+# every step's files under OUT; a killed replication continues where it stopped
+replicate-only: all
+	@$(MAKE) --no-print-directory -f tools/replicate.mk PYTHON=$(PYTHON)
+
 run-only: all
 	./$(APPDIR)/evolve $(RUN_CONFIG) --out $(RUN_DIR)
 	@$(PYTHON) tools/run_report.py $(RUN_DIR)
