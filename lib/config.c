@@ -112,8 +112,9 @@ static const stageKey g_stage_keys[] = {
     {"stage", "stages", EVOLVE_ | PI_, "",
      "it names the condition of the integration test only (robustness and generalisation: the "
      "integrated configuration's words, Table 2.1)"},
-    {"stage", "init_population", S_ | M_, "the integrated stage starts from integrated.populations",
-     "a post-evaluation tests the genotypes it is given"},
+    {"stage", "init_population", S_ | M_ | PI_, "the integrated stage starts from integrated.populations",
+     "it names the condition of the integration test only (main_prim from random genotypes: "
+     "nonincremental)"},
     {"stage", "primitives", S_ | M_, "the integrated stage's trials are not per primitive",
      "a post-evaluation runs integrated trials"},
     {"stage", "simple_steps", S_, "it is the length of simple-prim trials", "a post-evaluation runs integrated trials"},

@@ -156,9 +156,19 @@ static const char *table21_name(const stConfig *c) {
   return "custom";
 }
 
+/* the primitive run's kind (thesis 3.1, Fig. 3.3): main-prim from random genotypes is the
+ * non-incremental approach; after simple-prim (prims, or main-prim from its population) the
+ * incremental one */
+static const char *prims_name(const stConfig *c) {
+  switch (c->stage_stages) {
+    case ST_STAGES_PRIMS: return "incremental";
+    case ST_STAGES_MAIN: return c->stage_init_population[0] ? "incremental" : "nonincremental";
+    default: return st_config_enum_name("stage", "stages", c->stage_stages);
+  }
+}
+
 void st_post_condition(const stConfig *c, stPostTest test, int caretaker, char *buf, size_t n) {
-  if (test == ST_POST_INTEGRATION)
-    snprintf(buf, n, "%s", st_config_enum_name("stage", "stages", c->stage_stages));
+  if (test == ST_POST_INTEGRATION) snprintf(buf, n, "%s", prims_name(c));
   else snprintf(buf, n, "%s%s", table21_name(c), caretaker ? "0" : "");
 }
 
@@ -216,7 +226,7 @@ static void post_end(void *self, const stWorld *w) {
   r->unstable = s->ir.unstable;
   r->end = r->success ? ST_END_SUCCESS : s->ir.end;
   const char *h = r->heard;
-  r->open_skipped = !strchr(h, 'o') && (strchr(h, 'g') || strchr(h, 'm'));
+  r->open_jumped = !strchr(h, 'o') && (strchr(h, 'g') || strchr(h, 'm'));
 }
 
 stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
@@ -244,7 +254,7 @@ void st_post_summarise(const stPostResult *r, int n, int excluded, stPostSummary
   double steps = 0.0;
   for (int i = 0; i < n && !excluded; i++) {
     s->successes += r[i].success;
-    s->open_skips += r[i].open_skipped;
+    s->open_jumps += r[i].open_jumped;
     s->unstable += r[i].unstable;
     if (r[i].success) steps += r[i].reached_step + 1;
   }
@@ -258,20 +268,20 @@ static const char *end_name(int end) {
 
 int st_post_write_trials(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
                          const stPostTrial *t, int ntrials, const stPostResult *r) {
-  fprintf(f, "test,condition,run,individual,trial,type,cell,posture,repetition,words,heard,"
-             "open_skipped,success,steps_to_target,end,steps_run,obj_x,obj_y,target_x,target_y,"
-             "target_z\n");
+  fprintf(f, "test,condition,run,individual,trial,type,cell,posture,repetition,words,success,"
+             "reached_step,open_jumped,run_label,heard,end,steps_run,obj_x,obj_y,target_x,"
+             "target_y,target_z\n");
   for (int i = 0; i < nind; i++) {
     if (ind[i].excluded) continue;
     for (int k = 0; k < ntrials; k++) {
       const stPostResult *x = &r[(size_t)i * (size_t)ntrials + (size_t)k];
       const stPostTrial *y = &t[k];
-      fprintf(f, "%s,%s,%s,%d,%d,%d,%d,%d,%d,%s,%s,%d,%d,%d,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+      fprintf(f, "%s,%s,%d,%d,%d,%d,%d,%d,%d,%s,%d,%d,%d,%s,%s,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g\n",
               L->test, L->condition, ind[i].run, ind[i].rank, y->index, y->type, y->cell,
-              y->posture, y->repetition, st_word_source_name(L->words), x->heard,
-              x->open_skipped, x->success, x->success ? x->reached_step + 1 : -1,
-              end_name(x->end), x->steps_run, y->obj[0], y->obj[1], y->target_pos[0],
-              y->target_pos[1], y->target_pos[2]);
+              y->posture, y->repetition, st_word_source_name(L->words), x->success,
+              x->reached_step, x->open_jumped, ind[i].run_label, x->heard, end_name(x->end),
+              x->steps_run, y->obj[0], y->obj[1], y->target_pos[0], y->target_pos[1],
+              y->target_pos[2]);
     }
   }
   return ferror(f) ? -1 : 0;
@@ -279,14 +289,15 @@ int st_post_write_trials(FILE *f, const stPostLabels *L, const stPostIndividual 
 
 int st_post_write_summary(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
                           int ntrials, const stPostResult *r) {
-  fprintf(f, "test,condition,run,individual,successes,trials,success_rate,mean_steps_to_target,"
-             "open_skips,unstable,excluded,generation\n");
+  fprintf(f, "test,condition,run,individual,successes,trials,excluded,open_jumped,run_label,"
+             "success_rate,mean_steps_to_target,unstable,generation\n");
   for (int i = 0; i < nind; i++) {
     stPostSummary s;
     st_post_summarise(&r[(size_t)i * (size_t)ntrials], ntrials, ind[i].excluded, &s);
-    fprintf(f, "%s,%s,%s,%d,%d,%d,%.17g,%.17g,%d,%d,%d,%d\n", L->test, L->condition, ind[i].run,
-            ind[i].rank, s.successes, s.trials, (double)s.successes / s.trials, s.mean_steps,
-            s.open_skips, s.unstable, ind[i].excluded, ind[i].generation);
+    fprintf(f, "%s,%s,%d,%d,%d,%d,%d,%d,%s,%.17g,%.17g,%d,%d\n", L->test, L->condition,
+            ind[i].run, ind[i].rank, s.successes, s.trials, ind[i].excluded, s.open_jumps,
+            ind[i].run_label, (double)s.successes / s.trials, s.mean_steps, s.unstable,
+            ind[i].generation);
   }
   return ferror(f) ? -1 : 0;
 }

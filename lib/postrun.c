@@ -64,7 +64,7 @@ void st_post_run_label(const char *path, char *buf, size_t n) {
 static void individual_init(stPostIndividual *ind, const char *label, const char *path, int rank,
                             int generation) {
   memset(ind, 0, sizeof *ind);
-  st__strlcpy(ind->run, label, sizeof ind->run);
+  st__strlcpy(ind->run_label, label, sizeof ind->run_label);
   st__strlcpy(ind->path, path, sizeof ind->path);
   ind->rank = rank;
   ind->generation = generation;
@@ -307,11 +307,12 @@ static stStatus load_individuals(postRun *R, char *err, size_t errsz) {
                       ? st_post_load_population(d->inputs[i], per, ngenes, &R->ind[i * per], err, errsz)
                       : st_post_load_run(d->inputs[i], R->cfg, exclusion, &R->ind[i], err, errsz);
     if (st) return st;
+    for (int k = 0; k < per; k++) R->ind[i * per + k].run = i; /* the input's position */
     for (int j = 0; j < i * per; j++)
-      if (!strcmp(R->ind[j].run, R->ind[i * per].run))
+      if (!strcmp(R->ind[j].run_label, R->ind[i * per].run_label))
         return st__errf(err, errsz, "%s and %s have the same run label '%s' (expected runs in "
                         "directories of different names)", R->ind[j].path, R->ind[i * per].path,
-                        R->ind[j].run), ST_ERR_ARG;
+                        R->ind[j].run_label), ST_ERR_ARG;
   }
   return ST_OK;
 }
@@ -349,9 +350,9 @@ static stStatus plan(postRun *R, char *err, size_t errsz) {
   if (st) return st;
   if (d->condition) snprintf(R->condition, sizeof R->condition, "%s", d->condition);
   else st_post_condition(R->cfg, d->test, d->caretaker, R->condition, sizeof R->condition);
-  if (strpbrk(R->condition, ",\"\n"))
-    return st__errf(err, errsz, "condition '%s': commas, quotes and newlines do not fit a CSV "
-                    "field (expected a plain label)", R->condition), ST_ERR_ARG;
+  if (!R->condition[0] || strpbrk(R->condition, ",\"| \t\r\n"))
+    return st__errf(err, errsz, "condition '%s': not a plain label (expected a name without "
+                    "commas, quotes, '|' or blanks)", R->condition), ST_ERR_ARG;
   R->labels.test = st_post_test_name(d->test);
   R->labels.condition = R->condition;
   R->labels.words = R->words;

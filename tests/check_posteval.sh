@@ -42,10 +42,11 @@ bad = []
 def need(ok, what):
     if not ok: bad.append(what)
 need(list(rows[0].keys()) == ("test,condition,run,individual,trial,type,cell,posture,repetition,"
-     "words,heard,open_skipped,success,steps_to_target,end,steps_run,obj_x,obj_y,target_x,"
+     "words,success,reached_step,open_jumped,run_label,heard,end,steps_run,obj_x,obj_y,target_x,"
      "target_y,target_z").split(",") if rows else True, "trials.csv header")
-need(list(summ[0].keys()) == ("test,condition,run,individual,successes,trials,success_rate,"
-     "mean_steps_to_target,open_skips,unstable,excluded,generation").split(","), "summary header")
+need(list(summ[0].keys()) == ("test,condition,run,individual,successes,trials,excluded,"
+     "open_jumped,run_label,success_rate,mean_steps_to_target,unstable,generation").split(","),
+     "summary header")
 need(len(summ) == int(nind), "%d summary rows (expected %s)" % (len(summ), nind))
 P = [(0.40, 0.10), (0.20, 0.10), (0.30, 0.20), (0.30, 0.00)]
 T = [(0.25, 0.10, 0.17), (0.25, -0.10, 0.17)]
@@ -72,23 +73,27 @@ for r in rows:
     need(set(r["heard"]) <= set("rogm+"), "heard %s" % r["heard"])
     if words == "none": need(r["heard"] == "", "heard none %s" % r["heard"])
     if words == "caretaker": need(r["heard"] == "" or r["heard"][0] == "r", "caretaker starts with reach")
-    need(r["open_skipped"] == str(int("o" not in r["heard"] and any(c in r["heard"] for c in "gm"))), "open_skipped %s" % r)
-    need((int(r["steps_to_target"]) == int(r["steps_run"])) if succ else r["steps_to_target"] == "-1", "steps of %s" % r)
+    need(r["open_jumped"] == str(int("o" not in r["heard"] and any(c in r["heard"] for c in "gm"))), "open_jumped %s" % r)
+    need((int(r["reached_step"]) + 1 == int(r["steps_run"])) if succ else r["reached_step"] == "-1", "steps of %s" % r)
     need(int(r["steps_run"]) <= steps and (succ or r["end"] != "success"), "length of trial %d" % i)
 # the same trials for every individual; the summary from the rows
 by = {}
 for r in rows: by.setdefault((r["run"], r["individual"]), []).append(r)
+labels = {}
+for s in summ: labels.setdefault(s["run_label"], set()).add(s["run"])
+need(all(len(v) == 1 for v in labels.values()) and len(set().union(*labels.values())) == len(labels), "run numbers and labels")
+need(all(r["run_label"] == next(s["run_label"] for s in summ if s["run"] == r["run"]) for r in rows), "run labels of rows")
 tables = {tuple((r["trial"], r["obj_x"], r["obj_y"], r["target_x"], r["target_y"], r["target_z"]) for r in v) for v in by.values()}
 need(len(tables) <= 1, "every individual sees the same table")
 for s in summ:
     mine = by.get((s["run"], s["individual"]), [])
     ex = s["excluded"] == "1"
-    need(ex == (s["run"] == excluded), "excluded flag of %s" % s["run"])
+    need(ex == (s["run_label"] == excluded), "excluded flag of %s" % s["run_label"])
     need(len(mine) == (0 if ex else ntr) and int(s["trials"]) == ntr, "%d trial rows of %s (expected %d)" % (len(mine), s["run"], ntr))
     sc = sum(r["success"] == "1" for r in mine)
     need(int(s["successes"]) == sc and float(s["success_rate"]) == sc / ntr, "successes of %s" % s["run"])
-    need(int(s["open_skips"]) == sum(r["open_skipped"] == "1" for r in mine), "open_skips of %s" % s["run"])
-    st = [int(r["steps_to_target"]) for r in mine if r["success"] == "1"]
+    need(int(s["open_jumped"]) == sum(r["open_jumped"] == "1" for r in mine), "open_jumped of %s" % s["run"])
+    st = [int(r["reached_step"]) + 1 for r in mine if r["success"] == "1"]
     m = float(s["mean_steps_to_target"])
     need(math.isnan(m) if not st else abs(m - sum(st) / len(st)) < 1e-12, "mean steps of %s" % s["run"])
 print("%s %s: %d trial rows, %d summary rows, successes %s%s" % (test, cond, len(rows), len(summ),
@@ -111,9 +116,9 @@ int=(--set posteval.integration_top=2 --set posteval.integration_trials=8 --set 
 rc1=$?
 "$PE" integration configs/prims.cfg data/evolved/prims_s2/population.genome data/evolved/prims_s3_run \
   "${int[@]}" --threads 2 --out "$tmp/i2" > /dev/null 2>&1
-if [ $rc1 = 0 ] && check_files integration "$tmp/i1" caretaker prims 4 &&
-   [ "$(cut -d, -f3 "$tmp/i1/summary.csv" | sort -u | tr '\n' ' ')" = "prims_s2 prims_s3_run run " ] &&
-   grep -q '^posteval integration prims: 32/32 trials (100.0%)' "$tmp/i1.err" &&
+if [ $rc1 = 0 ] && check_files integration "$tmp/i1" caretaker incremental 4 &&
+   [ "$(cut -d, -f3,9 "$tmp/i1/summary.csv" | sort -u | tr '\n' ' ')" = "0,prims_s2 1,prims_s3_run run,run_label " ] &&
+   grep -q '^posteval integration incremental: 32/32 trials (100.0%)' "$tmp/i1.err" &&
    grep -q '4 individuals (0 excluded), 32 trials' "$tmp/i1.err"; then
   ok "integration: top 2 of 2 primitive runs x 8 caretaker trials, rows as SPEC 11, summary, progress"
 else ko "integration" "$(tail -2 "$tmp/i1.err")"; fi
@@ -131,7 +136,7 @@ rc1=$?
 rc3=$?
 if [ $rc1 = 0 ] && [ $rc3 = 0 ] && check_files robustness "$tmp/r1" selftalk ST-CT 2 &&
    check_files robustness "$tmp/rn" none NI 1 &&
-   [ "$(awk -F, 'NR > 1 { print $12 }' "$tmp/r1/summary.csv" | tr '\n' ' ')" = "1 1 " ]; then
+   [ "$(awk -F, 'NR > 1 { print $13 }' "$tmp/r1/summary.csv" | tr '\n' ' ')" = "1 1 " ]; then
   ok "robustness: ST-CT (self talk) and NI (no words), the best of the last generation (1), rows as SPEC 11"
 else ko "robustness" "$(tail -2 "$tmp/r1.err")"; fi
 if same_out "$tmp/r1" "$tmp/r2"; then ok "robustness: 1 and 2 threads give byte-identical files"

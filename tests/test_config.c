@@ -221,7 +221,7 @@ static void test_config_stage_keys(void) {
       {"network", "lambda", ALL}, {"ga", "mutation_rate_integrated", I},
       {"ga", "integrated_generations", I}, {"ga", "mutation_rate", S | M},
       {"ga", "population", E}, {"dynamics", "gravity", M | I | P}, {"stage", "simple_steps", S},
-      {"stage", "init_population", S | M}, {"stage", "stages", E | PI},
+      {"stage", "init_population", S | M | PI}, {"stage", "stages", E | PI},
       {"fitness", "move_touch", M | I}, {"fitness", "move_free", M | I},
       {"fitness", "fail_penalty", M | I}, {"fitness", "reach_hold_steps", M},
       {"fitness", "fp_min", S | M}, {"fitness", "penalty_object", S | M},
@@ -309,7 +309,7 @@ static void test_config_stage_keys(void) {
       {"ga.success_genotypes=2", "key 'ga.success_genotypes': 2 is read only by the simple-prim and main-prim stages"},
       {"ga.mutation_rate=0.01", "key 'ga.mutation_rate': 0.01 is read only by the simple-prim and main-prim stages"},
       {"stage.init_population=x.genome", "key 'stage.init_population': x.genome is read only by the "
-                                         "simple-prim and main-prim stages"},
+                                         "simple-prim and main-prim stages and the integration test"},
       {"fitness.fp_min=0.01", "key 'fitness.fp_min': 0.01 is read only by the simple-prim and main-prim stages"},
       {"postures.grasp_partial_thumb_flex=0.1", "key 'postures.grasp_partial_thumb_flex': 0.1 is read "
                                                 "only by the simple-prim and main-prim stages, which "

@@ -196,7 +196,13 @@ static void test_post_words_and_conditions(void) {
   CU_ASSERT_STRING_EQUAL(name, "custom");
   c = config_of("configs/prims.cfg");
   st_post_condition(&c, ST_POST_INTEGRATION, 0, name, sizeof name);
-  CU_ASSERT_STRING_EQUAL(name, "prims");
+  CU_ASSERT_STRING_EQUAL(name, "incremental");
+  c = config_of("configs/main_prim.cfg"); /* from the simple-prim population */
+  st_post_condition(&c, ST_POST_INTEGRATION, 0, name, sizeof name);
+  CU_ASSERT_STRING_EQUAL(name, "incremental");
+  c.stage_init_population[0] = 0; /* from random genotypes (thesis 3.1) */
+  st_post_condition(&c, ST_POST_INTEGRATION, 0, name, sizeof name);
+  CU_ASSERT_STRING_EQUAL(name, "nonincremental");
   CU_ASSERT_EQUAL(st_post_test_parse("generalisation"), ST_POST_GENERALISATION);
   CU_ASSERT_EQUAL(st_post_test_parse("generalization"), -1);
   CU_ASSERT_STRING_EQUAL(st_post_test_name(ST_POST_ROBUSTNESS), "robustness");
@@ -254,7 +260,7 @@ static void test_post_scripted_trials(void) {
     CU_ASSERT(r.reached_step > 40 && r.reached_step < 200);
     CU_ASSERT_EQUAL(r.steps_run, r.reached_step + 1); /* decided: ended there */
     CU_ASSERT_STRING_EQUAL(r.heard, "rgm");
-    CU_ASSERT_EQUAL(r.open_skipped, 1);
+    CU_ASSERT_EQUAL(r.open_jumped, 1);
   }
   /* a generalisation trial in the grid's middle cell, and one with no words */
   st_post_def_from_config(&fx->cfg, ST_POST_GENERALISATION, &d);
@@ -267,7 +273,7 @@ static void test_post_scripted_trials(void) {
   CU_ASSERT_EQUAL(st_post_run_trial(p, &idef, &ws, &t, &ctl, ST_WORDS_NONE, &r, err, sizeof err), ST_OK);
   CU_ASSERT(r.success == 0 && r.reached_step == -1 && r.end == ST_END_FULL && r.heard[0] == 0);
   CU_ASSERT_EQUAL(r.steps_run, 30);
-  CU_ASSERT_EQUAL(r.open_skipped, 0);
+  CU_ASSERT_EQUAL(r.open_jumped, 0);
   st_workspace_free(&ws);
   st_scripted_destroy(sc);
   st_protocol_destroy(p);
@@ -281,7 +287,7 @@ static stPostResult result(int success, int reached, const char *heard) {
   r.end = success ? ST_END_SUCCESS : ST_END_FULL;
   r.steps_run = success ? reached + 1 : 240;
   snprintf(r.heard, sizeof r.heard, "%s", heard);
-  r.open_skipped = !strchr(heard, 'o') && strpbrk(heard, "gm") != NULL;
+  r.open_jumped = !strchr(heard, 'o') && strpbrk(heard, "gm") != NULL;
   return r;
 }
 
@@ -292,14 +298,15 @@ static void test_post_summary_and_csv(void) {
                        result(0, -1, "")};
   stPostSummary s;
   st_post_summarise(r, 4, 0, &s);
-  CU_ASSERT(s.successes == 2 && s.trials == 4 && s.open_skips == 1 && s.unstable == 0);
+  CU_ASSERT(s.successes == 2 && s.trials == 4 && s.open_jumps == 1 && s.unstable == 0);
   CU_ASSERT_DOUBLE_EQUAL(s.mean_steps, 125.0, 0.0); /* (100 + 150) / 2 */
   st_post_summarise(r, 4, 1, &s);
   CU_ASSERT(s.successes == 0 && s.trials == 4 && isnan(s.mean_steps));
   stPostIndividual ind[2];
   memset(ind, 0, sizeof ind);
-  snprintf(ind[0].run, sizeof ind[0].run, "st-s1");
-  snprintf(ind[1].run, sizeof ind[1].run, "st-s2");
+  snprintf(ind[0].run_label, sizeof ind[0].run_label, "st-s1");
+  snprintf(ind[1].run_label, sizeof ind[1].run_label, "st-s2");
+  ind[1].run = 1;
   ind[0].generation = 99;
   ind[1].generation = 42;
   ind[1].excluded = 1;
@@ -316,19 +323,20 @@ static void test_post_summary_and_csv(void) {
   CU_ASSERT_EQUAL(st_post_write_trials(f, &L, ind, 2, t, 2, r), 0);
   fclose(f);
   CU_ASSERT_STRING_EQUAL(buf,
-      "test,condition,run,individual,trial,type,cell,posture,repetition,words,heard,open_skipped,"
-      "success,steps_to_target,end,steps_run,obj_x,obj_y,target_x,target_y,target_z\n"
-      "generalisation,ST,st-s1,0,0,-1,24,0,0,selftalk,rgm,1,1,100,success,100,0.29999999999999999,0.125,0.25,0,0.17000000000000001\n"
-      "generalisation,ST,st-s1,0,1,-1,24,1,0,selftalk,rog,0,0,-1,full,240,0.29999999999999999,0.125,0.25,0,0.17000000000000001\n");
+      "test,condition,run,individual,trial,type,cell,posture,repetition,words,success,"
+      "reached_step,open_jumped,run_label,heard,end,steps_run,obj_x,obj_y,target_x,target_y,"
+      "target_z\n"
+      "generalisation,ST,0,0,0,-1,24,0,0,selftalk,1,99,1,st-s1,rgm,success,100,0.29999999999999999,0.125,0.25,0,0.17000000000000001\n"
+      "generalisation,ST,0,0,1,-1,24,1,0,selftalk,0,-1,0,st-s1,rog,full,240,0.29999999999999999,0.125,0.25,0,0.17000000000000001\n");
   free(buf);
   f = open_memstream(&buf, &len);
   CU_ASSERT_EQUAL(st_post_write_summary(f, &L, ind, 2, 2, r), 0);
   fclose(f);
   CU_ASSERT_STRING_EQUAL(buf,
-      "test,condition,run,individual,successes,trials,success_rate,mean_steps_to_target,"
-      "open_skips,unstable,excluded,generation\n"
-      "generalisation,ST,st-s1,0,1,2,0.5,100,1,0,0,99\n"
-      "generalisation,ST,st-s2,0,0,2,0,nan,0,0,1,42\n");
+      "test,condition,run,individual,successes,trials,excluded,open_jumped,run_label,"
+      "success_rate,mean_steps_to_target,unstable,generation\n"
+      "generalisation,ST,0,0,1,2,0,1,st-s1,0.5,100,0,99\n"
+      "generalisation,ST,1,0,0,2,1,0,st-s2,0,nan,0,42\n");
   free(buf);
 }
 
@@ -376,7 +384,7 @@ static void test_post_load_run(void) {
   CU_ASSERT_EQUAL_FATAL(st_post_load_run(sub, &stct, 1, &ind, err, sizeof err), ST_OK);
   CU_ASSERT(ind.generation == 1 && ind.genome.gene[0] == 101 && ind.genome.ngenes == 696);
   CU_ASSERT(ind.excluded == 1 && ind.rank == 0);
-  CU_ASSERT_STRING_EQUAL(ind.run, "stct-s4");
+  CU_ASSERT_STRING_EQUAL(ind.run_label, "stct-s4");
   CU_ASSERT_EQUAL(st_post_load_run(sub, &stct, 0, &ind, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL(ind.excluded, 0); /* the caretaker variant runs everyone */
   fake_run(sub, "configs/integrated_stct.cfg", "1,1,1,1,1,0,10,0,1,0,0,0,0,0,1,0,0");
@@ -414,13 +422,13 @@ static void test_post_load_population(void) {
   stGenomeSet set;
   CU_ASSERT_EQUAL_FATAL(st_genome_set_read("data/evolved/prims_s2/population.genome", 612, &set, err, sizeof err), ST_OK);
   for (int i = 0; i < 10; i++) {
-    CU_ASSERT(ind[i].rank == i && !strcmp(ind[i].run, "prims_s2") && ind[i].generation == -1);
+    CU_ASSERT(ind[i].rank == i && !strcmp(ind[i].run_label, "prims_s2") && ind[i].generation == -1);
     CU_ASSERT_EQUAL(memcmp(ind[i].genome.gene, set.genome[i].gene, 2 * 612), 0);
   }
   st_genome_set_free(&set);
   CU_ASSERT_EQUAL(st_post_load_population("data/evolved/prims_s3_run", 10, 612, ind, err, sizeof err), ST_OK);
   CU_ASSERT_STRING_EQUAL(ind[9].path, "data/evolved/prims_s3_run/checkpoint");
-  CU_ASSERT_STRING_EQUAL(ind[9].run, "prims_s3_run");
+  CU_ASSERT_STRING_EQUAL(ind[9].run_label, "prims_s3_run");
   CU_ASSERT_EQUAL(st_post_load_population("data/evolved/prims_s2", 101, 612, ind, err, sizeof err), ST_ERR_ARG);
   ST_ASSERT_CONTAINS(err, "population.genome has 100 genotypes (expected at least posteval.integration_top = 101)");
   CU_ASSERT_EQUAL(st_post_load_population("data", 1, 612, ind, err, sizeof err), ST_ERR_IO);

@@ -102,7 +102,8 @@ stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, int caretak
 /* The condition's label: robustness and generalisation, the row of Table 2.1 the config's
  * network.arch and integrated.words_* / fitness_* / first_generation match ("ST-CT", "ST",
  * "CT", "NI"; "custom" for none), with "0" appended for the caretaker variant ("ST-CT0");
- * integration, stage.stages ("prims", "main_prim"). */
+ * integration, the primitive runs' kind (thesis 3.1): "incremental" (stage.stages prims, or
+ * main_prim from stage.init_population) or "nonincremental" (main_prim from random genotypes). */
 void st_post_condition(const stConfig *cfg, stPostTest test, int caretaker, char *buf, size_t n);
 
 /* The exclusion rule of the generalisation test (thesis 2.10.3, SPEC §11): 1 when none of the
@@ -120,7 +121,7 @@ typedef struct stPostResult {
   int steps_run;     /* steps simulated: reached_step + 1 after a success */
   int end;           /* stTrialEnd: ST_END_SUCCESS at reached_step, ST_END_FAILURE, ST_END_FULL */
   int unstable;      /* the simulation gave up (a failure) */
-  int open_skipped;  /* heard grasp or move but never open (the caretaker jumped open) */
+  int open_jumped;  /* heard grasp or move but never open (the caretaker jumped open) */
   char heard[ST_POST_HEARD_MAX + 2]; /* the words heard in order, repeats collapsed, as r, o,
                                         g, m; '+' ends a sequence cut at ST_POST_HEARD_MAX */
 } stPostResult;
@@ -134,7 +135,8 @@ stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stW
 /* ---- individuals ---- */
 
 typedef struct stPostIndividual {
-  char run[128];     /* the run's label: its directory's name */
+  int run;           /* the run's number: its input's position (0-based) on the command line */
+  char run_label[128]; /* the run's label: its directory's name */
   char path[512];    /* the file the genotype came from */
   int rank;          /* its index in that file (0 = the best); the best of a run: 0 */
   int generation;    /* robustness, generalisation: the last generation; integration: -1 */
@@ -165,7 +167,7 @@ stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
 typedef struct stPostSummary {
   int successes;
   int trials;            /* trials of the test (an excluded individual scores 0 of them) */
-  int open_skips;        /* trials with open_skipped */
+  int open_jumps;        /* trials with open_jumped */
   int unstable;          /* trials the simulation gave up on */
   double mean_steps;     /* mean of reached_step + 1 over the successes; NAN without any */
 } stPostSummary;
