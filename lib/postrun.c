@@ -100,6 +100,13 @@ stStatus st_post_load_population(const char *path, int top, int ngenes, stPostIn
   return ST_OK;
 }
 
+/* the text of an ENUM or BOOL key's value */
+static void choice_name(const char *section, const char *name, int v, char *buf, size_t n) {
+  const stConfigKey *k = st_config_key(st_config_find(section, name));
+  if (k && k->type == ST_CFG_ENUM) st__strlcpy(buf, st_config_enum_name(section, name, v), n);
+  else snprintf(buf, n, "%s", v ? "true" : "false");
+}
+
 /* the run's config.ini has the condition of cfg (Table 2.1's keys) */
 static stStatus same_condition(const char *dir, const stConfig *cfg, char *err, size_t errsz) {
   char path[ST_PATH_MAX];
@@ -119,11 +126,15 @@ static stStatus same_condition(const char *dir, const stConfig *cfg, char *err, 
   const int want[] = {ST_STAGES_INTEGRATED, cfg->network_arch, cfg->integrated_words_even,
                       cfg->integrated_words_odd, cfg->integrated_fitness_even,
                       cfg->integrated_fitness_odd, cfg->integrated_first_generation};
-  for (int i = 0; i < (int)(sizeof have / sizeof have[0]); i++)
-    if (have[i] != want[i])
-      return st__errf(err, errsz, "%s: key '%s.%s' is %d, the config's is %d (expected an "
-                      "integrated run of the config's condition)", path, keys[i][0], keys[i][1],
-                      have[i], want[i]), ST_ERR_ARG;
+  for (int i = 0; i < (int)(sizeof have / sizeof have[0]); i++) {
+    if (have[i] == want[i]) continue;
+    char h[64], w[64];
+    choice_name(keys[i][0], keys[i][1], have[i], h, sizeof h);
+    choice_name(keys[i][0], keys[i][1], want[i], w, sizeof w);
+    return st__errf(err, errsz, "%s: key '%s.%s' is %s, the config's is %s (expected an "
+                    "integrated run of the config's condition)", path, keys[i][0], keys[i][1],
+                    h, w), ST_ERR_ARG;
+  }
   return ST_OK;
 }
 

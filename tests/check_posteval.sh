@@ -195,7 +195,7 @@ refused "integrated.steps in the generalisation test" \
   "the generalisation test's trials last posteval.generalisation_steps" \
   "$PE" generalisation configs/integrated_stct.cfg "$tmp/stct-s1" --set integrated.steps=50
 refused "a run of another condition" \
-  "config.ini: key 'network.arch' is 2, the config's is 1 (expected an integrated run of the config's condition)" \
+  "config.ini: key 'network.arch' is B, the config's is A (expected an integrated run of the config's condition)" \
   "$PE" robustness configs/integrated_stct.cfg "$tmp/ni-s1"
 refused "the caretaker variant outside the generalisation test" \
   "the caretaker variant belongs to the generalisation test" \

@@ -393,8 +393,12 @@ static void test_post_load_run(void) {
   /* refusals: another condition's config, a fitness.csv without the generation's row */
   const stConfig ct = config_of("configs/integrated_ct.cfg");
   CU_ASSERT_EQUAL(st_post_load_run(sub, &ct, 1, &ind, err, sizeof err), ST_ERR_ARG);
-  ST_ASSERT_CONTAINS(err, "config.ini: key 'network.arch' is 1, the config's is 2 (expected an "
+  ST_ASSERT_CONTAINS(err, "config.ini: key 'network.arch' is A, the config's is B (expected an "
                           "integrated run of the config's condition)");
+  stConfig other = stct;
+  other.integrated_first_generation = 0;
+  CU_ASSERT_EQUAL(st_post_load_run(sub, &other, 1, &ind, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'integrated.first_generation' is true, the config's is false");
   fake_run(sub, "configs/integrated_stct.cfg", "2,1,1,1,1,0,10,0,1,0,0,0,0,0,1,0,0");
   CU_ASSERT_EQUAL(st_post_load_run(sub, &stct, 1, &ind, err, sizeof err), ST_ERR_PARSE);
   ST_ASSERT_CONTAINS(err, "fitness.csv: no row for generation 1, the last of best.genome");
