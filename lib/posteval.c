@@ -54,8 +54,8 @@ void st_post_def_from_config(const stConfig *c, stPostTest test, stPostDef *d) {
 
 void st_post_cell_center(const stPostDef *d, int cell, double xy[2]) {
   const double mid = 0.5 * (d->cells - 1);
-  xy[0] = d->center[0] + (cell % d->cells - mid) * d->cell_size;
-  xy[1] = d->center[1] + (cell / d->cells - mid) * d->cell_size;
+  xy[0] = d->center[0] + (cell / d->cells - mid) * d->cell_size; /* row: along x */
+  xy[1] = d->center[1] + (cell % d->cells - mid) * d->cell_size; /* column: along y */
 }
 
 /* integration, robustness: the integrated stage's types, fresh offsets */

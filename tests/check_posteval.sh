@@ -60,7 +60,7 @@ for r in rows:
     need(r["test"] == test and r["condition"] == cond and r["words"] == words, "labels of %s" % r)
     if test == "generalisation":
         cell, post, rep = i // (4 * reps), i // reps % 4, i % reps
-        cx, cy = 0.30 + (cell % n - (n - 1) / 2) * size, 0.10 + (cell // n - (n - 1) / 2) * size
+        cx, cy = 0.30 + (cell // n - (n - 1) / 2) * size, 0.10 + (cell % n - (n - 1) / 2) * size
         need((int(r["cell"]), int(r["posture"]), int(r["repetition"]), int(r["type"])) == (cell, post, rep, -1), "cell/posture/rep of trial %d" % i)
         need(abs(float(r["obj_x"]) - cx) <= 0.005 + 1e-12 and abs(float(r["obj_y"]) - cy) <= 0.005 + 1e-12, "object of trial %d" % i)
         need((r["target_x"], r["target_y"], r["target_z"]) == ("0.25", "0", "0.17000000000000001"), "target of trial %d" % i)

@@ -93,9 +93,9 @@ static void test_post_trained_tables(void) {
   CU_ASSERT_DOUBLE_EQUAL(t7.obj[0], 0.20 + off[0], 1e-15);
 }
 
-/* generalisation: trial i = (cell x 4 + posture) x 10 + repetition; cell c = cy x 7 + cx at
- * (0.30 + (cx - 3) 0.05, 0.10 + (cy - 3) 0.05) + +-0.5 cm; the target (0.25, 0, 0.17) without
- * offset; 300 steps; 1960 trials */
+/* generalisation: trial i = (cell x 4 + posture) x 10 + repetition; cell c = 7 row + column at
+ * (0.30 + (row - 3) 0.05, 0.10 + (column - 3) 0.05) + +-0.5 cm (the row along x, as apps/stats
+ * and the figures read it); the target (0.25, 0, 0.17) without offset; 300 steps; 1960 trials */
 static void test_post_grid_table(void) {
   const stConfig c = config_of(NULL);
   stScene s;
@@ -112,7 +112,7 @@ static void test_post_grid_table(void) {
     CU_ASSERT(t.cell == i / 40 && t.posture == i / 10 % 4 && t.repetition == i % 10);
     CU_ASSERT(t.type == -1 && t.target == ST_TARGET_GENERAL && t.steps == 300);
     seen[t.cell][t.posture][t.repetition]++;
-    const double cx = 0.30 + (t.cell % 7 - 3) * 0.05, cy = 0.10 + (t.cell / 7 - 3) * 0.05;
+    const double cx = 0.30 + (t.cell / 7 - 3) * 0.05, cy = 0.10 + (t.cell % 7 - 3) * 0.05;
     double off[5];
     hand_offsets(1, ST_POST_GENERALISATION, i, off, 0.005, 0.0);
     CU_ASSERT_DOUBLE_EQUAL(t.obj[0], cx + off[0], 1e-15);
@@ -133,7 +133,9 @@ static void test_post_grid_table(void) {
   double xy[2];
   st_post_cell_center(&d, 24, xy);
   CU_ASSERT(fabs(xy[0] - 0.30) < 1e-15 && fabs(xy[1] - 0.10) < 1e-15);
-  st_post_cell_center(&d, 6, xy);
+  st_post_cell_center(&d, 6, xy); /* row 0 (nearest), column 6 (left) */
+  CU_ASSERT(fabs(xy[0] - 0.15) < 1e-15 && fabs(xy[1] - 0.25) < 1e-15);
+  st_post_cell_center(&d, 42, xy); /* row 6 (farthest), column 0 (right) */
   CU_ASSERT(fabs(xy[0] - 0.45) < 1e-15 && fabs(xy[1] + 0.05) < 1e-15);
   /* smaller grids by key: 3 x 3 cells of 10 cm, 2 repetitions, 40 steps, another target */
   stConfig c2 = c;
@@ -146,9 +148,9 @@ static void test_post_grid_table(void) {
   st_post_def_from_config(&c2, ST_POST_GENERALISATION, &d);
   CU_ASSERT_EQUAL(d.trials, 3 * 3 * 4 * 2);
   stPostTrial t;
-  st_post_trial(&d, &s, 8 * 8 + 3 * 2 + 1, &t); /* cell 8 (2, 2), posture 3, repetition 1 */
-  CU_ASSERT(t.cell == 8 && t.posture == 3 && t.repetition == 1 && t.steps == 40);
-  CU_ASSERT(fabs(t.obj[0] - 0.40) <= 0.005 && fabs(t.obj[1] - 0.20) <= 0.005);
+  st_post_trial(&d, &s, 5 * 8 + 3 * 2 + 1, &t); /* cell 5 (row 1, column 2), posture 3, rep. 1 */
+  CU_ASSERT(t.cell == 5 && t.posture == 3 && t.repetition == 1 && t.steps == 40);
+  CU_ASSERT(fabs(t.obj[0] - 0.30) <= 0.005 && fabs(t.obj[1] - 0.20) <= 0.005);
   CU_ASSERT(t.target_pos[1] == 0.05);
 }
 

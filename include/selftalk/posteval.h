@@ -66,7 +66,7 @@ void st_post_def_from_config(const stConfig *cfg, stPostTest test, stPostDef *de
 typedef struct stPostTrial {
   int index;         /* 0 .. trials-1 */
   int type;          /* integration, robustness: k = index mod 4; generalisation: -1 */
-  int cell;          /* generalisation: cell cy * cells + cx; -1 */
+  int cell;          /* generalisation: cell row * cells + column; -1 */
   int posture;       /* reach posture (integration, robustness: = type) */
   int repetition;    /* integration, robustness: index / 4; generalisation: 0 .. repetitions-1 */
   int target;        /* 0, 1 (k mod 2) or ST_TARGET_GENERAL */
@@ -84,7 +84,9 @@ typedef struct stPostTrial {
  * offset. */
 void st_post_trial(const stPostDef *def, const stScene *scene, int i, stPostTrial *trial);
 
-/* Centre (x, y) of cell c = cy * cells + cx: centre + ((cx, cy) - (cells - 1) / 2) cell_size. */
+/* Centre (x, y) of cell c = row * cells + column, the row along x (0 nearest the robot), the
+ * column along y (0 the most negative y, the robot's right): centre + ((row, column) -
+ * (cells - 1) / 2) cell_size. */
 void st_post_cell_center(const stPostDef *def, int cell, double xy[2]);
 
 /* The episode of a trial: dynamic, from reach posture trial->posture, the object-table
