@@ -44,8 +44,9 @@ CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS
 # lib/ by layer: core (network, GA, config, genomes, statistics: no simulator, so a robot
 # controller can link them alone), model (URDF, kinematics), world (kinematic and ODE
 # backends), task (postures, fitness, caretaker, scripted controller), episode (the one
-# episode loop and its trials), run (evolution). Objects mirror the folders under build/obj/.
-LAYERS := core model world task episode run
+# episode loop and its trials), run (evolution), posteval (the post-evaluation tests). Objects
+# mirror the folders under build/obj/.
+LAYERS := core model world task episode run posteval
 STRAY_SRC := $(filter-out $(LAYERS:%=lib/%/),$(sort $(dir $(wildcard lib/*.c lib/*.cpp lib/*/*.c lib/*/*.cpp))))
 $(if $(STRAY_SRC),$(error sources outside the layer folders ($(STRAY_SRC)): move them into one of lib/{$(LAYERS)}/ or add a layer to LAYERS))
 CORE_SRC := $(wildcard lib/core/*.c)

@@ -22,6 +22,7 @@
 #include "selftalk/ik.h"
 #include "selftalk/integrated.h"
 #include "selftalk/model.h"
+#include "selftalk/posteval.h"
 #include "selftalk/postures.h"
 #include "selftalk/robot.h"
 #include "selftalk/scene.h"

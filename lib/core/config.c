@@ -52,70 +52,146 @@ static int section_known(const char *section) {
  * is main-prim's), intscore.c and integrated.c (the integrated stage: eq. 2.14 is built on
  * eq. 2.10-2.12, its penalty is table + object moving, its trials start from the reach postures
  * and keep the table, its failures pay fitness.fail_penalty), assemble.c, caretaker.c,
- * prediction.c, net.c (gamma: types A and B only), the dynamic world (main-prim, integrated). */
+ * prediction.c, net.c (gamma: types A and B only), the dynamic world (main-prim, integrated).
+ * The post-evaluations (posteval.c, thesis 2.10) run integrated trials from the reach postures
+ * in the dynamic world and record success and the step the target was reached, no fitness: they
+ * read the network, robot, scene and dynamics keys, the caretaker's conditions (integration
+ * test, and the generalisation test's caretaker variant), integrated.steps (integration and
+ * robustness trials), the condition's words (robustness, generalisation) and their own [posteval]
+ * keys. post_why says why a post-evaluation does not read a key (NULL: why says it). */
 #define S_ ST_CONFIG_SIMPLE_PRIM
 #define M_ ST_CONFIG_MAIN_PRIM
 #define I_ ST_CONFIG_INTEGRATED
+#define PI_ ST_CONFIG_INTEGRATION_TEST
+#define PR_ ST_CONFIG_ROBUSTNESS_TEST
+#define PG_ ST_CONFIG_GENERALISATION_TEST
+#define P_ ST_CONFIG_POSTEVAL
+#define EVOLVE_ (S_ | M_ | I_)
+static const char NO_FITNESS[] = "a post-evaluation records success and the step the target was "
+                                 "reached, no fitness";
+static const char NO_CARETAKER[] = "only the integration test and the generalisation test's "
+                                   "caretaker variant hear the caretaker";
 typedef struct stageKey {
   const char *section, *name;
   unsigned stages;
   const char *why;
+  const char *post_why;
 } stageKey;
 static const stageKey g_stage_keys[] = {
-    {"network", "arch", I_, "the primitive stages evolve the base network, which the integrated "
-                            "stage grows into type A or B (thesis 2.9.2)"},
-    {"network", "gamma_a", I_, "the primitive stages' base network has no linguistic units (eq. 2.13)"},
-    {"network", "gamma_b", I_, "the primitive stages' base network has no linguistic units (eq. 2.13)"},
-    {"network", "typeb_init_gene", I_, "it initialises the type B block of genotypes the integrated stage grows"},
-    {"network", "secondary_input", I_, "the primitive stages never give the secondary input"},
-    {"ga", "mutation_rate", S_ | M_, "the integrated stage mutates at ga.mutation_rate_integrated"},
-    {"ga", "mutation_rate_integrated", I_, "the primitive stages mutate at ga.mutation_rate"},
-    {"ga", "success_genotypes", S_ | M_, "it ends the primitive stages"},
+    {"network", "arch", I_ | P_, "the primitive stages evolve the base network, which the "
+                                 "integrated stage grows into type A or B (thesis 2.9.2)", NULL},
+    {"network", "gamma_a", I_ | P_, "the primitive stages' base network has no linguistic units (eq. 2.13)", NULL},
+    {"network", "gamma_b", I_ | P_, "the primitive stages' base network has no linguistic units (eq. 2.13)", NULL},
+    {"network", "typeb_init_gene", I_, "it initialises the type B block of genotypes the integrated stage grows", NULL},
+    {"network", "secondary_input", I_ | P_, "the primitive stages never give the secondary input", NULL},
+    {"ga", "mutation_rate", S_ | M_, "the integrated stage mutates at ga.mutation_rate_integrated",
+     "a post-evaluation runs no genetic algorithm"},
+    {"ga", "mutation_rate_integrated", I_, "the primitive stages mutate at ga.mutation_rate",
+     "a post-evaluation runs no genetic algorithm"},
+    {"ga", "success_genotypes", S_ | M_, "it ends the primitive stages",
+     "a post-evaluation runs no genetic algorithm"},
     {"ga", "max_generations", S_ | M_, "it limits the primitive stages (the integrated stage: "
-                                       "ga.integrated_generations)"},
-    {"ga", "integrated_generations", I_, "it is the length of the integrated stage"},
-    {"robot", "alpha_dynamic", M_ | I_, "simple-prim runs in kinematic mode"},
-    {"stage", "init_population", S_ | M_, "the integrated stage starts from integrated.populations"},
-    {"stage", "primitives", S_ | M_, "the integrated stage's trials are not per primitive"},
-    {"stage", "simple_steps", S_, "it is the length of simple-prim trials"},
-    {"stage", "main_reach_steps", M_, "it is the length of main-prim reach trials"},
-    {"stage", "main_open_steps", M_, "it is the length of main-prim open trials"},
-    {"stage", "main_grasp_steps", M_, "it is the length of main-prim grasp trials"},
-    {"stage", "main_move_steps", M_, "it is the length of main-prim move trials"},
-    {"stage", "grasp_table_off_step", M_, "only main-prim grasp trials remove the table"},
-    {"stage", "move_table_off_step", M_, "only main-prim move trials remove the table"},
+                                       "ga.integrated_generations)",
+     "a post-evaluation runs no genetic algorithm"},
+    {"ga", "integrated_generations", I_, "it is the length of the integrated stage",
+     "a post-evaluation runs no genetic algorithm"},
+    {"ga", "*", EVOLVE_, "", "a post-evaluation runs no genetic algorithm"},
+    {"robot", "alpha_dynamic", M_ | I_ | P_, "simple-prim runs in kinematic mode", NULL},
+    {"scene", "object_spacing", EVOLVE_ | PI_ | PR_, "",
+     "the generalisation test places the object on its grid (posteval.generalisation_*)"},
+    {"scene", "object_offset", EVOLVE_ | PI_ | PR_, "",
+     "the generalisation test offsets the object by posteval.generalisation_offset"},
+    {"scene", "target_x", EVOLVE_ | PI_ | PR_, "",
+     "the generalisation test's target is posteval.generalisation_target_x/y/z"},
+    {"scene", "target_y", EVOLVE_ | PI_ | PR_, "",
+     "the generalisation test's target is posteval.generalisation_target_x/y/z"},
+    {"scene", "target_z", EVOLVE_ | PI_ | PR_, "",
+     "the generalisation test's target is posteval.generalisation_target_x/y/z"},
+    {"scene", "target_offset", EVOLVE_ | PI_ | PR_, "",
+     "the generalisation test's target has no offset (thesis 2.10.3: \"always kept the same\")"},
+    {"stage", "stages", EVOLVE_ | PI_, "",
+     "it names the condition of the integration test only (robustness and generalisation: the "
+     "integrated configuration's words, Table 2.1)"},
+    {"stage", "init_population", S_ | M_ | PI_, "the integrated stage starts from integrated.populations",
+     "it names the condition of the integration test only (main_prim from random genotypes: "
+     "nonincremental)"},
+    {"stage", "primitives", S_ | M_, "the integrated stage's trials are not per primitive",
+     "a post-evaluation runs integrated trials"},
+    {"stage", "simple_steps", S_, "it is the length of simple-prim trials", "a post-evaluation runs integrated trials"},
+    {"stage", "main_reach_steps", M_, "it is the length of main-prim reach trials", "a post-evaluation runs integrated trials"},
+    {"stage", "main_open_steps", M_, "it is the length of main-prim open trials", "a post-evaluation runs integrated trials"},
+    {"stage", "main_grasp_steps", M_, "it is the length of main-prim grasp trials", "a post-evaluation runs integrated trials"},
+    {"stage", "main_move_steps", M_, "it is the length of main-prim move trials", "a post-evaluation runs integrated trials"},
+    {"stage", "grasp_table_off_step", M_, "only main-prim grasp trials remove the table", "a post-evaluation runs integrated trials"},
+    {"stage", "move_table_off_step", M_, "only main-prim move trials remove the table", "a post-evaluation runs integrated trials"},
     {"fitness", "penalty_object", S_ | M_, "the integrated stage's penalty is the table's and the "
-                                           "object-moving one (eq. 2.14)"},
-    {"fitness", "fp_min", S_ | M_, "only the primitive stages take the harmonic mean of F_p"},
+                                           "object-moving one (eq. 2.14)", NO_FITNESS},
+    {"fitness", "fp_min", S_ | M_, "only the primitive stages take the harmonic mean of F_p", NO_FITNESS},
     {"fitness", "reach_hold_steps", M_, "only main-prim reach trials end early on success "
-                                        "(integrated trials: integrated.hold_steps)"},
-    {"fitness", "fail_penalty", M_ | I_, "simple-prim trials never end early on failure"},
+                                        "(integrated trials: integrated.hold_steps)", NO_FITNESS},
+    {"fitness", "fail_penalty", M_ | I_, "simple-prim trials never end early on failure", NO_FITNESS},
     {"fitness", "move_touch", M_ | I_, "eq. 2.12 scores main-prim move trials and the integrated "
-                                       "stage (simple-prim: eq. 2.8)"},
+                                       "stage (simple-prim: eq. 2.8)", NO_FITNESS},
     {"fitness", "move_lift", M_ | I_, "eq. 2.12 scores main-prim move trials and the integrated "
-                                      "stage (simple-prim: eq. 2.8)"},
+                                      "stage (simple-prim: eq. 2.8)", NO_FITNESS},
     {"fitness", "move_lift_dist", M_ | I_, "eq. 2.12 scores main-prim move trials and the "
-                                           "integrated stage (simple-prim: eq. 2.8)"},
-    {"fitness", "move_free", M_ | I_, "simple-prim has no object-moving penalty"},
-    {"fitness", "move_scale", M_ | I_, "simple-prim has no object-moving penalty"},
-    {"fitness", "move_max", M_ | I_, "simple-prim has no object-moving penalty"},
-    {"postures", "open_*", S_ | M_, "the integrated stage starts every trial from the reach postures"},
-    {"postures", "grasp_*", S_ | M_, "the integrated stage starts every trial from the reach postures"},
-    {"postures", "move_*", S_ | M_, "the integrated stage starts every trial from the reach postures"},
-    {"caretaker", "*", I_, "the caretaker speaks in the integrated stage only"},
-    {"integrated", "*", I_, "it defines the integrated stage"},
-    {"prediction", "*", I_, "the prediction fitness scores integrated trials only"},
-    {"dynamics", "*", M_ | I_, "simple-prim runs in kinematic mode"},
+                                           "integrated stage (simple-prim: eq. 2.8)", NO_FITNESS},
+    {"fitness", "move_free", M_ | I_, "simple-prim has no object-moving penalty", NO_FITNESS},
+    {"fitness", "move_scale", M_ | I_, "simple-prim has no object-moving penalty", NO_FITNESS},
+    {"fitness", "move_max", M_ | I_, "simple-prim has no object-moving penalty", NO_FITNESS},
+    /* the caretaker's conditions (caretaker.c: main-prim reach and open success) */
+    {"fitness", "success_dist", EVOLVE_ | PI_ | PG_, "", NO_CARETAKER},
+    {"fitness", "open_h", EVOLVE_ | PI_ | PG_, "", NO_CARETAKER},
+    {"fitness", "palm_down", EVOLVE_ | PI_ | PG_, "", NO_CARETAKER},
+    {"fitness", "reach_height", ST_CONFIG_ALL_STAGES, "", NULL}, /* the reach postures, d_r */
+    {"fitness", "*", EVOLVE_, "", NO_FITNESS},
+    {"postures", "open_*", S_ | M_, "the integrated stage starts every trial from the reach postures",
+     "a post-evaluation starts every trial from the reach postures"},
+    {"postures", "grasp_*", S_ | M_, "the integrated stage starts every trial from the reach postures",
+     "a post-evaluation starts every trial from the reach postures"},
+    {"postures", "move_*", S_ | M_, "the integrated stage starts every trial from the reach postures",
+     "a post-evaluation starts every trial from the reach postures"},
+    {"caretaker", "*", I_ | PI_ | PG_, "the caretaker speaks in the integrated stage only", NO_CARETAKER},
+    {"integrated", "steps", I_ | PI_ | PR_, "it defines the integrated stage",
+     "the generalisation test's trials last posteval.generalisation_steps"},
+    {"integrated", "words_*", I_ | PR_ | PG_, "it defines the integrated stage",
+     "the integration test always hears the caretaker"},
+    {"integrated", "first_generation", I_ | PG_, "it defines the integrated stage",
+     "only the generalisation test's exclusion rule reads the training's plan (which trials were "
+     "autonomous in the last generation)"},
+    {"integrated", "*", I_, "it defines the integrated stage",
+     "a post-evaluation runs its own trials (posteval.*) to the first step in the target, with "
+     "no fitness"},
+    {"prediction", "*", I_, "the prediction fitness scores integrated trials only", NO_FITNESS},
+    {"dynamics", "*", M_ | I_ | P_, "simple-prim runs in kinematic mode", NULL},
+    {"posteval", "integration_*", PI_, "", "it belongs to the integration test"},
+    {"posteval", "robustness_*", PR_, "", "it belongs to the robustness test"},
+    {"posteval", "generalisation_*", PG_, "", "it belongs to the generalisation test"},
 };
+/* why the stages of a run do not read a key: the post-evaluations' reason where a row has one
+ * and the run is one of them, else the evolution stages' reason ("" for rows only the
+ * post-evaluations leave out) */
+static const char *row_why(const struct stageKey *r, unsigned run) {
+  if (r->post_why && (run & P_)) return r->post_why;
+  return r->why[0] ? r->why : "a post-evaluation reads it, no evolution stage does";
+}
 /* the stages stage.stages names */
 static const struct {
   const char *choice;
   unsigned stages;
 } g_run_stages[] = {{"simple_prim", S_}, {"main_prim", M_}, {"prims", S_ | M_}, {"integrated", I_}};
-static const char *const g_stage_names[] = {"simple-prim", "main-prim", "integrated"};
+static const char *const g_stage_names[] = {"simple-prim", "main-prim", "integrated",
+                                            "integration", "robustness", "generalisation"};
+#define NSTAGE_BITS 6
+#define NEVOLVE_BITS 3 /* bits 0-2 are evolution stages, 3-5 post-evaluation tests */
+#undef P_
 #undef S_
 #undef M_
 #undef I_
+#undef PI_
+#undef PR_
+#undef PG_
+#undef EVOLVE_
 
 /* a row's name: the key's name, "*" or a "prefix_*" */
 static int name_matches(const char *pattern, const char *name) {
@@ -138,16 +214,48 @@ unsigned st_config_key_stages(int i) {
   return r ? r->stages : ST_CONFIG_ALL_STAGES;
 }
 
-/* "simple-prim", "simple-prim and main-prim", "simple-prim, main-prim and integrated" */
-static void stage_list(unsigned stages, char *buf, size_t n) {
+/* "x", "x and y", "x, y and z": the names of the set bits lo..hi-1 */
+static void join_names(unsigned stages, int lo, int hi, char *buf, size_t n) {
   buf[0] = 0;
   int left = 0;
-  for (int b = 0; b < 3; b++) left += (int)(stages >> b & 1u);
-  for (int b = 0; b < 3; b++)
+  for (int b = lo; b < hi; b++) left += (int)(stages >> b & 1u);
+  for (int b = lo; b < hi; b++)
     if (stages >> b & 1u) {
       strncat(buf, g_stage_names[b], n - strlen(buf) - 1);
       if (--left) strncat(buf, left == 1 ? " and " : ", ", n - strlen(buf) - 1);
     }
+}
+
+static int nbits(unsigned x) {
+  int c = 0;
+  for (; x; x &= x - 1) c++;
+  return c;
+}
+
+/* "the simple-prim and main-prim stages", "the integrated stage and the robustness test",
+ * "the integration and generalisation tests" */
+static void readers_phrase(unsigned stages, char *buf, size_t n) {
+  char ev[96], post[96];
+  const unsigned evm = (1u << NEVOLVE_BITS) - 1u;
+  join_names(stages, 0, NEVOLVE_BITS, ev, sizeof ev);
+  join_names(stages, NEVOLVE_BITS, NSTAGE_BITS, post, sizeof post);
+  const int ne = nbits(stages & evm), np = nbits(stages & ~evm);
+  if (ne && np)
+    snprintf(buf, n, "the %s stage%s and the %s test%s", ev, ne > 1 ? "s" : "", post, np > 1 ? "s" : "");
+  else if (np) snprintf(buf, n, "the %s test%s", post, np > 1 ? "s" : "");
+  else snprintf(buf, n, "the %s stage%s", ev, ne > 1 ? "s" : "");
+}
+
+/* what a run is: "simple-prim and main-prim", "robustness test", "integrated, robustness test" */
+static void run_phrase(unsigned stages, char *buf, size_t n) {
+  char ev[96], post[96];
+  const unsigned evm = (1u << NEVOLVE_BITS) - 1u;
+  join_names(stages, 0, NEVOLVE_BITS, ev, sizeof ev);
+  join_names(stages, NEVOLVE_BITS, NSTAGE_BITS, post, sizeof post);
+  const int np = nbits(stages & ~evm);
+  snprintf(buf, n, "%s%s%s%s", ev, ev[0] && np ? ", " : "", post,
+           np ? (np > 1 ? " tests" : " test") : "");
+  if (!buf[0]) snprintf(buf, n, "no stage");
 }
 
 #define FIELD(cfg, k, T) ((T *)((char *)(cfg) + (k)->offset))
@@ -446,28 +554,33 @@ static void short_real(double v, char *buf, size_t n) {
   }
 }
 
-stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err, size_t errsz) {
-  stConfig d;
-  st_config_default(&d);
+stStatus st_config_check_changes(const stConfig *cfg, const stConfig *base, const char *base_name,
+                                 unsigned stages, char *err, size_t errsz) {
   for (int i = 0; i < NKEYS; i++) {
     const stConfigKey *k = &g_keys[i];
     const stageKey *r = stage_key(k);
-    if (!r || (r->stages & stages) || is_default(cfg, &d, k)) continue;
-    char v[ST_CONFIG_STR_MAX + 32], dv[ST_CONFIG_STR_MAX + 32], readers[64], run[64];
+    if (!r || (r->stages & stages) || is_default(cfg, base, k)) continue;
+    char v[ST_CONFIG_STR_MAX + 32], bv[ST_CONFIG_STR_MAX + 32], readers[160], run[160];
     format_value(cfg, k, v, sizeof v);
-    format_value(&d, k, dv, sizeof dv);
+    format_value(base, k, bv, sizeof bv);
     if (k->type == ST_CFG_REAL) {
       short_real(*CFIELD(cfg, k, double), v, sizeof v);
-      short_real(*CFIELD(&d, k, double), dv, sizeof dv);
+      short_real(*CFIELD(base, k, double), bv, sizeof bv);
     }
-    stage_list(r->stages, readers, sizeof readers);
-    stage_list(stages, run, sizeof run);
-    st__errf(err, errsz, "key '%s.%s': %s is read only by the %s stage%s, which this run (%s) does "
-             "not have: %s (expected the default, %s)", k->section, k->name, v, readers,
-             strstr(readers, " and ") ? "s" : "", run[0] ? run : "no stage", r->why, dv);
+    readers_phrase(r->stages, readers, sizeof readers);
+    run_phrase(stages, run, sizeof run);
+    st__errf(err, errsz, "key '%s.%s': %s is read only by %s, which this run (%s) does not have: "
+             "%s (expected %s, %s)", k->section, k->name, v, readers, run, row_why(r, stages),
+             base_name, bv);
     return ST_ERR_ARG;
   }
   return ST_OK;
+}
+
+stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err, size_t errsz) {
+  stConfig d;
+  st_config_default(&d);
+  return st_config_check_changes(cfg, &d, "the default", stages, err, errsz);
 }
 
 /* ---- INI loading through inih ----
@@ -698,10 +811,10 @@ void st_config_help(FILE *f) {
     if (k->type == ST_CFG_REAL) short_real(*CFIELD(&d, k, double), v, sizeof v);
     expected(k, exp, sizeof exp);
     const stageKey *r = stage_key(k);
-    char readers[64] = "";
-    if (r) stage_list(r->stages, readers, sizeof readers);
+    const int some = r && r->stages != ST_CONFIG_ALL_STAGES;
+    char readers[160] = "";
+    if (some) readers_phrase(r->stages, readers, sizeof readers);
     fprintf(f, "%s.%s (%s, default %s; %s)%s%s%s\n    %s\n", k->section, k->name, tn[k->type], v,
-            exp, r ? "; read by the " : "", readers,
-            r ? (strstr(readers, " and ") ? " stages only" : " stage only") : "", k->help);
+            exp, some ? "; read by " : "", readers, some ? " only" : "", k->help);
   }
 }

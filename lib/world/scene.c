@@ -24,11 +24,15 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
     s->obj_pos[k][1] = c->scene_object_center_y + dir[k][1] * c->scene_object_spacing;
     s->obj_pos[k][2] = s->obj_rest_z;
   }
-  for (int k = 0; k < 3; k++) {
+  for (int k = 0; k < 2; k++) {
     s->target[k][0] = c->scene_target_x;
-    s->target[k][1] = k == 0 ? c->scene_target_y : k == 1 ? -c->scene_target_y : 0.0;
+    s->target[k][1] = k == 0 ? c->scene_target_y : -c->scene_target_y;
     s->target[k][2] = c->scene_target_z;
   }
+  /* the generalisation test's, "in between the two trained ones" (thesis 2.10.3) */
+  s->target[ST_TARGET_GENERAL][0] = c->posteval_generalisation_target_x;
+  s->target[ST_TARGET_GENERAL][1] = c->posteval_generalisation_target_y;
+  s->target[ST_TARGET_GENERAL][2] = c->posteval_generalisation_target_z;
   s->obj_offset = c->scene_object_offset;
   s->target_offset = c->scene_target_offset;
   s->target_radius = c->scene_target_radius;
