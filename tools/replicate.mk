@@ -96,6 +96,7 @@ jobs:
 
 # ---- evolution: --resume continues a killed run to the identical files (or starts it)
 $(OUT)/prims-s%/population.genome:
+	@mkdir -p $(OUT)
 	$(EVOLVE) configs/prims.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(PRIM_ARGS) > $(@D).log
 
 # every integrated run starts from the same assembled genotypes: the top 10 of each primitive run

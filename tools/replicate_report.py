@@ -166,13 +166,13 @@ def section_integrated(out):
     for key, name in CONDS:
         for p in sorted(glob.glob(os.path.join(out, "int-%s-s*" % key, "fitness.csv"))):
             r = read_rows(p)[-1]
-            lines.append("| %s | %d | %d | %s | %s | %s | %s/8 |" % (
+            trials = len([c for c in r if re.match(r"best_t\d+$", c)])
+            lines.append("| %s | %d | %d | %s | %s | %s | %s/%d |" % (
                 name, run_seed(p), int(r["generation"]) + 1, "%.1f" % float(r["best"]),
-                r["best_bonus"], r["best_bonus_auto"], r["best_successes"]))
-        lines.append("")
-        lines.append("![%s](figures/fig3_int_%s.png)" % (name, key))
-        lines.append("")
-    return lines
+                r["best_bonus"], r["best_bonus_auto"], r["best_successes"], trials))
+    lines.append("")
+    lines += ["![%s](figures/fig3_int_%s.png)" % (name, key) for key, name in CONDS]
+    return lines + [""]
 
 
 def per_run_table(s, th_tab, conds):
