@@ -26,7 +26,8 @@ static double dist3(const double *a, const double *b) {
 static int rotation_ok(const double *R) {
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
-      const double d = R[3 * i] * R[3 * j] + R[3 * i + 1] * R[3 * j + 1] + R[3 * i + 2] * R[3 * j + 2];
+      const double d =
+          R[3 * i] * R[3 * j] + R[3 * i + 1] * R[3 * j + 1] + R[3 * i + 2] * R[3 * j + 2];
       if (fabs(d - (i == j)) > 1e-9) return 0;
     }
   const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
@@ -161,7 +162,8 @@ static void test_shapes_fingertips(void) {
   stShape s[MAX_SHAPES];
   const int n = st_world_shapes(w, s, MAX_SHAPES);
   CU_ASSERT_FATAL(n <= MAX_SHAPES);
-  for (int f = 0; f < ST_NTIP; f++) check_tip(w, s, n, f, (const double (*)[9])R, (const double (*)[3])p);
+  for (int f = 0; f < ST_NTIP; f++)
+    check_tip(w, s, n, f, (const double (*)[9])R, (const double (*)[3])p);
   /* every robot shape in model order, named after its link */
   for (int i = 0; i < r->model->ngeom; i++) {
     CU_ASSERT_EQUAL(s[i].kind, ST_SHAPE_ROBOT);
@@ -208,22 +210,24 @@ static void test_shapes_mesh_box(void) {
   stModel *m = r->model;
   int gi = -1;
   for (int i = 0; i < m->ngeom; i++)
-    if (m->geom_body[i] == r->palm_body || m->geom_body[i] == r->touch_body[ST_TOUCH_PALM]) gi = i;
+    if (m->geom_body[i] == r->touch_body[ST_TOUCH_PALM]) gi = i; /* the hand's box */
   CU_ASSERT_FATAL(gi >= 0);
   double verts[4][3] = {{0, -1, 1}, {2, 0, 3}, {1, 2, 5}, {0.5, 0.5, 2}};
   double (*saved_vert)[3] = m->mesh_vert;
   const int saved[3] = {m->geom_type[gi], m->geom_vert0[gi], m->geom_nvert[gi]};
-  m->mesh_vert = verts, m->geom_type[gi] = ST_GEOM_MESH, m->geom_vert0[gi] = 0, m->geom_nvert[gi] = 4;
+  m->mesh_vert = verts, m->geom_type[gi] = ST_GEOM_MESH;
+  m->geom_vert0[gi] = 0, m->geom_nvert[gi] = 4;
   stShape s[MAX_SHAPES];
   st_world_shapes(w, s, MAX_SHAPES);
-  m->mesh_vert = saved_vert, m->geom_type[gi] = saved[0], m->geom_vert0[gi] = saved[1], m->geom_nvert[gi] = saved[2];
+  m->mesh_vert = saved_vert, m->geom_type[gi] = saved[0];
+  m->geom_vert0[gi] = saved[1], m->geom_nvert[gi] = saved[2];
   /* expected: the box centre in the body frame, geom_pos + geom_rot c, then the body's pose */
   const double c[3] = {1, 0.5, 3};
   const int b = m->geom_body[gi];
   double local[3], want[3];
   for (int i = 0; i < 3; i++)
-    local[i] = m->geom_pos[gi][i] + m->geom_rot[gi][3 * i] * c[0] + m->geom_rot[gi][3 * i + 1] * c[1] +
-               m->geom_rot[gi][3 * i + 2] * c[2];
+    local[i] = m->geom_pos[gi][i] + m->geom_rot[gi][3 * i] * c[0] +
+               m->geom_rot[gi][3 * i + 1] * c[1] + m->geom_rot[gi][3 * i + 2] * c[2];
   for (int i = 0; i < 3; i++)
     want[i] = w->p[b][i] + w->R[b][3 * i] * local[0] + w->R[b][3 * i + 1] * local[1] +
               w->R[b][3 * i + 2] * local[2];
@@ -277,7 +281,8 @@ static void test_shapes_dynamic(void) {
   /* the same trajectory, bit for bit, with and without asking for the shapes */
   CU_ASSERT(memcmp(a->obj, b->obj, sizeof a->obj) == 0);
   CU_ASSERT(memcmp(a->qhat, b->qhat, sizeof a->qhat) == 0);
-  CU_ASSERT(memcmp(a->p[a->robot->tip_body[0]], b->p[b->robot->tip_body[0]], sizeof(double[3])) == 0);
+  const int tip = a->robot->tip_body[0];
+  CU_ASSERT(memcmp(a->p[tip], b->p[tip], sizeof(double[3])) == 0);
   st_world_destroy(a);
   st_world_destroy(b);
 }

@@ -200,12 +200,14 @@ static int scene_shapes(const stWorld *w, stShape out[4]) {
   out[n] = scene_shape(ST_SHAPE_BALL, ST_GEOM_SPHERE, Ro, d, d, d);
   memcpy(out[n++].pos, w->obj, sizeof w->obj);
   if (sc->base_radius > 0 && sc->base_height > 0) { /* as lib/world/world_geom.c makes it */
-    const double db = 2.0 * sc->base_radius, off[3] = {0, 0, -sc->obj_radius + 0.5 * sc->base_height};
+    const double db = 2.0 * sc->base_radius;
+    const double off[3] = {0, 0, -sc->obj_radius + 0.5 * sc->base_height};
     out[n] = scene_shape(ST_SHAPE_BALL, ST_GEOM_CYLINDER, Ro, db, db, sc->base_height);
     st__frame_point(Ro, w->obj, off, out[n++].pos);
   }
   const double *lo = sc->table_lo, *hi = sc->table_hi;
-  out[n] = scene_shape(ST_SHAPE_TABLE, ST_GEOM_BOX, NULL, hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  out[n] = scene_shape(ST_SHAPE_TABLE, ST_GEOM_BOX, NULL, hi[0] - lo[0], hi[1] - lo[1],
+                       hi[2] - lo[2]);
   for (int k = 0; k < 3; k++) out[n].pos[k] = 0.5 * (lo[k] + hi[k]);
   n++;
   const double dt = 2.0 * sc->target_radius;
