@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The thesis-figure scripts (tools/fig_*.py) on the hand-made fixtures of tests/fixtures/: each
+# The thesis-figure scripts (tools/fig_*.py: Figs. 3.1, 3.3-3.12) on the hand-made fixtures of tests/fixtures/: each
 # writes a valid, non-blank PNG (chunks and CRCs, the image data inflates to its size) and a
 # valid SVG (XML, with the figure's labels as text), prints the numbers it drew (checked against
 # values worked out by hand), draws the same SVG twice, and refuses a malformed CSV with
@@ -8,76 +8,9 @@
 set -uo pipefail
 CHECK=check_figures
 source "$(dirname "$0")/check_lib.sh"
-PY=${PYTHON:-/usr/bin/python3}
+source "$(dirname "$0")/check_figlib.sh"
 FX=tests/fixtures
 FIG=$FX/figures
-
-cat > "$tmp/valid.py" <<'PY'
-"""valid.py FILE [TEXT...]: FILE is a PNG or SVG that decodes, is not blank, and (SVG) holds
-every TEXT in its <text> elements"""
-import struct, sys, zlib
-import xml.etree.ElementTree as ET
-path, texts = sys.argv[1], sys.argv[2:]
-data = open(path, "rb").read()
-if path.endswith(".png"):
-    assert data[:8] == b"\x89PNG\r\n\x1a\n", "signature"
-    pos, chunks, idat = 8, [], b""
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body, crc = data[pos + 8:pos + 8 + n], struct.unpack(">I", data[pos + 8 + n:pos + 12 + n])[0]
-        assert zlib.crc32(kind + body) == crc, f"CRC of {kind}"
-        chunks.append(kind)
-        idat += body if kind == b"IDAT" else b""
-        pos += 12 + n
-    assert chunks[0] == b"IHDR" and chunks[-1] == b"IEND", chunks
-    w, h, depth, ctype = struct.unpack(">IIBB", data[16:26])
-    channels = {2: 3, 6: 4}[ctype]
-    raw = zlib.decompress(idat)
-    assert depth == 8 and w > 100 and h > 100 and len(raw) == h * (1 + w * channels), "size"
-    assert len(set(raw[1:1 + w * channels * h // 2])) > 8, "blank"
-else:
-    root = ET.fromstring(data)
-    assert root.tag == "{http://www.w3.org/2000/svg}svg", root.tag
-    words = " ".join(t.text or "" for t in root.iter("{http://www.w3.org/2000/svg}text"))
-    missing = [t for t in texts if t not in words]
-    assert not missing, f"no text {missing} in {words[:300]}"
-    assert len(list(root.iter())) > 50, "too few elements"
-PY
-
-# draw NAME SCRIPT ARGS... -- TEXT...: writes $tmp/NAME.png and .svg (output in $tmp/NAME.out)
-# and checks both files
-draw() {
-  local name=$1 script=$2; shift 2
-  local args=() texts=()
-  while [ $# -gt 0 ] && [ "$1" != -- ]; do args+=("$1"); shift; done
-  [ $# -gt 0 ] && shift && texts=("$@")
-  if ! "$PY" "tools/$script" "${args[@]}" -o "$tmp/$name.png" -o "$tmp/$name.svg" > "$tmp/$name.out" 2>&1; then
-    ko "$name: $script failed" "$(cat "$tmp/$name.out")"; return 1
-  fi
-  local e
-  if e=$("$PY" "$tmp/valid.py" "$tmp/$name.png" 2>&1 | tail -1) && e=$("$PY" "$tmp/valid.py" "$tmp/$name.svg" "${texts[@]}" 2>&1 | tail -1); then
-    ok "$name: valid PNG and SVG"
-  else
-    ko "$name: invalid output" "$e"; return 1
-  fi
-}
-# has NAME LINE...: NAME's output has every LINE
-has() {
-  local name=$1; shift
-  for l in "$@"; do grep -qxF -- "$l" "$tmp/$name.out" || { ko "$name: printed values" "no '$l' in: $(cat "$tmp/$name.out")"; return; }; done
-  ok "$name: printed values"
-}
-# refuses NAME NEEDLE SCRIPT ARGS...: exit non-zero, NEEDLE on stderr, no output file
-refuses() {
-  local name=$1 needle=$2 script=$3; shift 3
-  rm -f "$tmp/bad.png" "$tmp/bad.svg"
-  "$PY" "tools/$script" "$@" -o "$tmp/bad.png" -o "$tmp/bad.svg" > /dev/null 2> "$tmp/err"; local rc=$?
-  if [ "$rc" != 0 ] && grep -qF -- "$needle" "$tmp/err" && [ ! -e "$tmp/bad.png" ] && [ ! -e "$tmp/bad.svg" ]; then
-    ok "$name"
-  else
-    ko "$name" "rc=$rc $(cat "$tmp/err")"
-  fi
-}
 
 # ---- Fig. 3.1: the hand-made run changes stage at generation 3; its config.ini's bonus 5 x 16
 # trials = 80; and the committed seed-2 run (simple-prim 0-819, main-prim from 820, 160 of 160)
@@ -103,6 +36,38 @@ sed 's/best_bonus_auto/best_auto/' "$FIG/integrated_fitness.csv" > "$tmp/i1.csv"
 refuses "fig3_5: a missing column" "$tmp/i1.csv:1: header without best_bonus_auto" fig_int_fitness.py "$tmp/i1.csv"
 sed '3s/,100,20,/,100,20/' "$FIG/integrated_fitness.csv" > "$tmp/i2.csv"
 refuses "fig3_5: a short row" "$tmp/i2.csv:3: 16 fields (expected 17, as the header)" fig_int_fitness.py "$tmp/i2.csv"
+
+# ---- Fig. 3.3 from the integration rows of the fixture (the robustness row skipped).
+# incremental successes 25 30 20 28 35 10 -> sorted 10 20 25 28 30 35: median (25 + 28) / 2 =
+# 26.5, quartiles (h = 1.25, 3.75) 20 + 0.25 x 5 = 21.25 and 28 + 0.75 x 2 = 29.5; bins of 5
+# (35-40 closed): 10-14 one, 20-24 one, 25-29 two, 30-34 one, 35-40 one. nonincremental 23 24
+# 10 40 -> 10 23 24 40: median 23.5, quartiles 10 + 0.75 x 13 = 19.75 and 24 + 0.25 x 16 = 28.
+# open_jumped, all ten: 12 20 21 25 30 30 33 35 35 40: median 30, quartiles (h = 2.25, 6.75)
+# 21 + 0.25 x 4 = 22 and 33 + 0.75 x 2 = 34.5
+draw fig3_3 fig_integration.py "$FIG/integration_summary.csv" -- \
+  "integration test" "successful trials (of 40)" "individuals" "incremental (n = 6, median 26.5)" \
+  "nonincremental (n = 4, median 23.5)" "35-40"
+has fig3_3 "fig_integration: incremental: successes n=6 median=26.5 q1=21.25 q3=29.5 min=10 max=35" \
+  "fig_integration: incremental: individuals per bin 0-4:0 5-9:0 10-14:1 15-19:0 20-24:1 25-29:2 30-34:1 35-40:1" \
+  "fig_integration: nonincremental: successes n=4 median=23.5 q1=19.75 q3=28 min=10 max=40" \
+  "fig_integration: nonincremental: individuals per bin 0-4:0 5-9:0 10-14:1 15-19:0 20-24:2 25-29:0 30-34:0 35-40:1" \
+  "fig_integration: open jumped, all: n=10 median=30 q1=22 q3=34.5 min=12 max=40"
+"$PY" tools/fig_integration.py "$FIG/integration_summary.csv" --bin 20 -o "$tmp/f33.svg" > "$tmp/f33.out" 2>&1 &&
+  grep -qxF "fig_integration: incremental: individuals per bin 0-19:1 20-40:5" "$tmp/f33.out" &&
+  ok "fig3_3: --bin 20 (two bins, the second closed)" || ko "fig3_3 --bin" "$(cat "$tmp/f33.out")"
+sed '5s/,30,40,0,20$/,30,36,0,20/' "$FIG/integration_summary.csv" > "$tmp/g1.csv"
+refuses "fig3_3: another trial count" "$tmp/g1.csv:5: 36 trials (expected 40, as line 4" fig_integration.py "$tmp/g1.csv"
+sed '5s/,30,40,0,20$/,41,40,0,20/' "$FIG/integration_summary.csv" > "$tmp/g2.csv"
+refuses "fig3_3: successes > trials" "$tmp/g2.csv:5: successes 41 of 40 trials" fig_integration.py "$tmp/g2.csv"
+sed '5s/,30,40,0,20$/,30,40,1,20/' "$FIG/integration_summary.csv" > "$tmp/g3.csv"
+refuses "fig3_3: an excluded individual" "$tmp/g3.csv:5: excluded 1 (expected 0" fig_integration.py "$tmp/g3.csv"
+sed '5s/^integration,incremental,0,1,/integration,incremental,0,0,/' "$FIG/integration_summary.csv" > "$tmp/g4.csv"
+refuses "fig3_3: an individual twice" "$tmp/g4.csv:5: incremental run 0 individual 0 again (expected one row per individual; first at line 4)" fig_integration.py "$tmp/g4.csv"
+sed '5s/,20$/,x/' "$FIG/integration_summary.csv" > "$tmp/g5.csv"
+refuses "fig3_3: a bad number" "$tmp/g5.csv:5: open_jumped 'x' (expected an integer)" fig_integration.py "$tmp/g5.csv"
+grep -v '^integration' "$FIG/integration_summary.csv" > "$tmp/g6.csv"
+refuses "fig3_3: no integration rows" "$tmp/g6.csv: no rows of test 'integration'" fig_integration.py "$tmp/g6.csv"
+refuses "fig3_3: a bad --bin" "--bin 41: expected 1..40" fig_integration.py "$FIG/integration_summary.csv" --bin 41
 
 # ---- Figs. 3.4 and 3.9 from the summary fixture (Tables A.1 and A.2): robustness ST-CT 95 95
 # 87.5 100 67.5 90 92.5 97.5 0 97.5 -> sorted 0 67.5 87.5 90 92.5 95 95 97.5 97.5 100: median

@@ -87,3 +87,8 @@ int st_model_joint(const stModel *model, const char *joint_name) {
     if (!strncmp(model->jnt_name[b], joint_name, ST_NAME_MAX)) return b;
   return -1;
 }
+
+const char *st_geom_type_name(int type) {
+  static const char *const names[ST_GEOM_TYPE_COUNT] = {"sphere", "box", "cylinder", "mesh"};
+  return type >= 0 && type < ST_GEOM_TYPE_COUNT ? names[type] : "?";
+}

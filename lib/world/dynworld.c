@@ -1187,6 +1187,13 @@ static void dyn_joint_angles(const stWorld *w, double *angle) {
   memcpy(angle, d->angle, sizeof(double) * (size_t)w->robot->nbody);
 }
 
+/* the object body's rotation, from ODE's 3x4 layout */
+static void dyn_object_rotation(const stWorld *w, double R[9]) {
+  const dReal *o = dBodyGetRotation(((const dynInternal *)w->internal_)->ball);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) R[3 * i + j] = o[4 * i + j];
+}
+
 static const stWorldBackend dyn_backend = {
     .destroy = dyn_destroy,
     .reset = dyn_reset,
@@ -1199,4 +1206,5 @@ static const stWorldBackend dyn_backend = {
     .unstable = dyn_unstable,
     .unstable_reason = dyn_unstable_reason,
     .info = dyn_info,
+    .object_rotation = dyn_object_rotation,
 };

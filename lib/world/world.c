@@ -2,6 +2,7 @@
  * The public st_world_* functions: allocation of an stWorld and dispatch to its backend,
  * kinematic (lib/world/kinworld.c) or dynamic (lib/world/dynworld.c), through the operations its state
  * carries (lib/world/world_backend.h). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -128,4 +129,98 @@ const char *st_world_unstable_reason(const stWorld *w) {
 void st_world_dynamic_info(const stWorld *w, stDynInfo *info) {
   memset(info, 0, sizeof *info);
   if (backend(w)->info) backend(w)->info(w, info);
+}
+
+/* ---- shapes (selftalk/world.h) ------------------------------------------------------------ */
+
+const char *st_shape_kind_name(int kind) {
+  static const char *const names[ST_SHAPE_KIND_COUNT] = {"robot", "ball", "table", "target"};
+  return kind >= 0 && kind < ST_SHAPE_KIND_COUNT ? names[kind] : "?";
+}
+
+static const double IDENTITY[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+/* a shape of the scene: axes R (identity when NULL), full extents ex, ey, ez */
+static stShape scene_shape(stShapeKind kind, stGeomType type, const double *R, double ex,
+                           double ey, double ez) {
+  stShape s = {kind, type, -1, -1, st_shape_kind_name(kind), {ex, ey, ez}, {0, 0, 0}, {0}};
+  memcpy(s.R, R ? R : IDENTITY, sizeof s.R);
+  return s;
+}
+
+/* a mesh's vertices' bounding box in its own frame: centre c, full extents ext */
+static void mesh_box(const stModel *m, int gi, double c[3], double ext[3]) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int v = 0; v < m->geom_nvert[gi]; v++)
+    for (int k = 0; k < 3; k++) {
+      const double x = m->mesh_vert[m->geom_vert0[gi] + v][k];
+      lo[k] = fmin(lo[k], x);
+      hi[k] = fmax(hi[k], x);
+    }
+  for (int k = 0; k < 3; k++) {
+    const int empty = !(hi[k] >= lo[k]);
+    c[k] = empty ? 0.0 : 0.5 * (lo[k] + hi[k]);
+    ext[k] = empty ? 0.0 : hi[k] - lo[k];
+  }
+}
+
+/* model geometry gi at the world's poses */
+static stShape robot_shape(const stWorld *w, int gi) {
+  const stModel *m = w->robot->model;
+  const int b = m->geom_body[gi];
+  const double *sz = m->geom_size[gi];
+  stShape s = {ST_SHAPE_ROBOT, (stGeomType)m->geom_type[gi], b, gi, m->body_name[b],
+               {0, 0, 0}, {0, 0, 0}, {0}};
+  double c[3] = {0, 0, 0}, local[3];
+  switch (s.type) {
+    case ST_GEOM_SPHERE: s.size[0] = s.size[1] = s.size[2] = 2.0 * sz[0]; break;
+    case ST_GEOM_BOX: memcpy(s.size, sz, sizeof s.size); break;
+    case ST_GEOM_CYLINDER:
+      s.size[0] = s.size[1] = 2.0 * sz[0];
+      s.size[2] = sz[1];
+      break;
+    default: mesh_box(m, gi, c, s.size); break;
+  }
+  st__mat3_vec(m->geom_rot[gi], c, local); /* the centre in the body frame */
+  for (int k = 0; k < 3; k++) local[k] += m->geom_pos[gi][k];
+  st__frame_point(w->R[b], w->p[b], local, s.pos);
+  st__mat3_mul(w->R[b], m->geom_rot[gi], s.R);
+  return s;
+}
+
+/* the scene's shapes in order: ball sphere, ball base (when the scene has one), table,
+ * target; returns their count */
+static int scene_shapes(const stWorld *w, stShape out[4]) {
+  const stScene *sc = w->scene;
+  double Ro[9];
+  if (backend(w)->object_rotation) backend(w)->object_rotation(w, Ro);
+  else memcpy(Ro, IDENTITY, sizeof Ro);
+  const double d = 2.0 * sc->obj_radius;
+  int n = 0;
+  out[n] = scene_shape(ST_SHAPE_BALL, ST_GEOM_SPHERE, Ro, d, d, d);
+  memcpy(out[n++].pos, w->obj, sizeof w->obj);
+  if (sc->base_radius > 0 && sc->base_height > 0) { /* as lib/world/world_geom.c makes it */
+    const double db = 2.0 * sc->base_radius;
+    const double off[3] = {0, 0, -sc->obj_radius + 0.5 * sc->base_height};
+    out[n] = scene_shape(ST_SHAPE_BALL, ST_GEOM_CYLINDER, Ro, db, db, sc->base_height);
+    st__frame_point(Ro, w->obj, off, out[n++].pos);
+  }
+  const double *lo = sc->table_lo, *hi = sc->table_hi;
+  out[n] = scene_shape(ST_SHAPE_TABLE, ST_GEOM_BOX, NULL, hi[0] - lo[0], hi[1] - lo[1],
+                       hi[2] - lo[2]);
+  for (int k = 0; k < 3; k++) out[n].pos[k] = 0.5 * (lo[k] + hi[k]);
+  n++;
+  const double dt = 2.0 * sc->target_radius;
+  out[n] = scene_shape(ST_SHAPE_TARGET, ST_GEOM_SPHERE, NULL, dt, dt, dt);
+  memcpy(out[n++].pos, w->target, sizeof w->target);
+  return n;
+}
+
+int st_world_shapes(const stWorld *w, stShape *out, int max) {
+  const int ngeom = w->robot->model->ngeom;
+  stShape scene[4];
+  const int nscene = scene_shapes(w, scene);
+  for (int i = 0; i < ngeom && i < max; i++) out[i] = robot_shape(w, i);
+  for (int i = 0; i < nscene && ngeom + i < max; i++) out[ngeom + i] = scene[i];
+  return ngeom + nscene;
 }

@@ -32,6 +32,9 @@ typedef struct stWorldBackend {
   int (*unstable)(const stWorld *w);
   const char *(*unstable_reason)(const stWorld *w);
   void (*info)(const stWorld *w, stDynInfo *info);
+  /* the object's rotation (world <- object, row-major; read only): NULL for an object that
+   * never turns (identity) */
+  void (*object_rotation)(const stWorld *w, double R[9]);
 } stWorldBackend;
 
 /* Every backend's state, which stWorld.internal_ points to, starts with this head: the
