@@ -16,7 +16,7 @@ for f in prims-s1/population.genome prims-s2/population.genome \
   posteval/integration/summary.csv int-stct-s1/population.genome int-ni-s2/population.genome \
   posteval/robustness-ct/summary.csv posteval/generalisation-st0/trials.csv \
   stats/table_3_1.txt stats/table_3_2.txt stats/table_3_3.txt stats/selftalk.csv \
-  figures/fig3_1.png figures/fig3_9.svg figures/fig3_10.png report.md; do
+  figures/fig3_1.png figures/fig3_3.png figures/fig3_9.svg figures/fig3_10.png report.md; do
   [ -s "$tmp/a/$f" ] || missing="$missing $f"
 done
 if [ -z "$missing" ]; then ok "every step's files"; else ko "every step's files" "missing:$missing"; fi

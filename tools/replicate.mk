@@ -43,6 +43,7 @@ GA_TINY := --set ga.population=20 --set ga.elites=2 --set ga.parents=4
 PRIM_ARGS ?= --generations 2 $(GA_TINY)
 INT_ARGS ?= --generations 2 $(GA_TINY) --set integrated.trials=4 --set integrated.steps=20
 INTEG_ARGS ?= --set posteval.integration_top=2 --set posteval.integration_trials=4
+FIG3_3_ARGS ?= --bin 1
 ROB_ARGS ?= --set posteval.robustness_trials=4
 GEN_ARGS ?= --set posteval.generalisation_cells=2 --set posteval.generalisation_repetitions=1 \
   --set posteval.generalisation_steps=20
@@ -162,6 +163,7 @@ FIG = $(PYTHON) tools/$(1).py $(2) -o $(OUT)/figures/$(3).png -o $(OUT)/figures/
 $(OUT)/figures/.done: $(PRIM_POPS) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selftalk.csv
 	@mkdir -p $(@D)
 	$(call FIG,fig_prim_fitness,$(PRIM_POPS:/population.genome=),fig3_1)
+	$(call FIG,fig_integration,$(OUT)/summary/integration.csv $(FIG3_3_ARGS),fig3_3)
 	$(foreach c,$(CONDS),$(call FIG,fig_int_fitness,$(SEEDS:%=$(OUT)/int-$(c)-s%),fig3_int_$(c));)
 	$(call FIG,fig_boxplot,$(OUT)/summary/robustness.csv --test robustness,fig3_4)
 	$(call FIG,fig_boxplot,$(OUT)/summary/generalisation.csv --test generalisation,fig3_9)
