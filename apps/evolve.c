@@ -58,7 +58,7 @@ int main(int argc, char **argv) {
   }
   printf("evolve: %s, seed %d, output in %s\n", ca.config_path, cfg.run_seed, out);
   fflush(stdout);
-  stEvolveDef def = {&cfg, out, threads, generations, resume, stdout};
+  stEvolveDef def = {&cfg, out, threads, generations, resume, stdout, NULL};
   char err[2048];
   if (st_evolve_run(&def, err, sizeof err)) app_die(prog, "%s", err);
   return 0;
