@@ -286,6 +286,9 @@ typedef struct coord {
   long ncpu, capcpu;
   double busy;      /* summed wall time of the evaluations */
   double eval_wall; /* rank 0's wall time in evaluate */
+  double between;   /* rank 0's wall time from one generation's last result to the next's
+                       first task: the GA, the files, the checkpoint */
+  double t_end;     /* when the last evaluate returned */
   double cpu_min, cpu_max;
   int generations;
   stEvolveEvaluator ev;
@@ -564,11 +567,13 @@ static stStatus coord_evaluate(void *self, const stConfig *cfg, const stEvolveTa
     st = (snprintf(err, errsz, "MPI: the workers are lost"), ST_ERR_IO);
   if (!st) st = ensure_owner(n, err, errsz);
   const double t0 = now();
+  if (g.generations > 0) g.between += t0 - g.t_end;
   for (int next = 0, received = 0; !st && received < n;) {
     while (!st && next < n && g.npending > 0) st = send_task(&tasks[next++], err, errsz);
     if (!st) st = take_up(results, n, &received, err, errsz);
   }
-  g.eval_wall += now() - t0;
+  g.t_end = now();
+  g.eval_wall += g.t_end - t0;
   g.generations++;
   return st;
 }
@@ -585,10 +590,11 @@ static void print_stats(void) {
   qsort(g.cpu, (size_t)g.ncpu, sizeof *g.cpu, cmp_double);
   fprintf(g.progress, "evolve: MPI: %ld evaluations in %d generation%s; CPU per evaluation: mean "
           "%.4g s, min %.4g, median %.4g, max %.4g; the %d slot%s busy %.1f%% of the %.1f s "
-          "rank 0 waited for results\n", g.ncpu, g.generations, g.generations == 1 ? "" : "s",
-          sum / (double)g.ncpu, g.cpu_min, g.cpu[g.ncpu / 2], g.cpu_max, g.nslots,
-          g.nslots == 1 ? " was" : "s were",
-          g.eval_wall > 0 ? 100.0 * g.busy / ((double)g.nslots * g.eval_wall) : 0.0, g.eval_wall);
+          "rank 0 waited for results; rank 0 between generations %.3g s each\n", g.ncpu,
+          g.generations, g.generations == 1 ? "" : "s", sum / (double)g.ncpu, g.cpu_min,
+          g.cpu[g.ncpu / 2], g.cpu_max, g.nslots, g.nslots == 1 ? " was" : "s were",
+          g.eval_wall > 0 ? 100.0 * g.busy / ((double)g.nslots * g.eval_wall) : 0.0, g.eval_wall,
+          g.generations > 1 ? g.between / (g.generations - 1) : 0.0);
   fflush(g.progress);
 }
 
