@@ -16,11 +16,28 @@
 
 #ifndef ST_WITH_MPI
 
+#include <stdlib.h>
+
 int app_mpi_built(void) { return 0; }
 
+static long env_long(const char *a, const char *b) {
+  const char *v = getenv(a) ? getenv(a) : getenv(b);
+  return v ? strtol(v, NULL, 10) : -1;
+}
+
+/* started as several ranks by a launcher: each would run the whole evolution into the same
+ * files, so all refuse (rank 0 says why) */
 appMpiRole app_mpi_start(int *argc, char ***argv) {
   (void)argc;
   (void)argv;
+  const long size = env_long("OMPI_COMM_WORLD_SIZE", "PMI_SIZE");
+  if (size > 1) {
+    if (env_long("OMPI_COMM_WORLD_RANK", "PMI_RANK") == 0)
+      fprintf(stderr, "evolve: started as %ld MPI ranks, but built without MPI: each would run "
+              "the whole evolution into the same files (install OpenMPI, e.g. `make deps`, and "
+              "rebuild)\n", size);
+    exit(2);
+  }
   return APP_MPI_NONE;
 }
 

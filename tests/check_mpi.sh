@@ -10,6 +10,7 @@ set -uo pipefail
 CHECK=check_mpi
 source "$(dirname "$0")/check_lib.sh"
 EV="$APPDIR/evolve"
+BUILD=${BUILD:-build}
 cfg=configs/simple_prim.cfg
 
 # ---- the cluster scripts (always) ----
@@ -37,6 +38,17 @@ else
   ko "array task run" "$(tail -n 3 "$tmp/arr1.log" "$tmp/arr2.log")"
 fi
 
+# the scaling model's inputs and outputs: per-individual costs, then the modelled generation
+"$BUILD/eval_cost" $cfg --population data/evolved/simple_prim_s3.genome --count 6 > "$tmp/cost.csv" 2> "$tmp/cost.err"
+python3 tools/mpi_model.py "$tmp/cost.csv" --slots 1,2,4 --samples 20 --serial 0.01 > "$tmp/model.txt" 2>&1
+if [ "$(grep -c '^[0-5],' "$tmp/cost.csv")" = 6 ] && grep -q '^# 6 individuals of .*, simple-prim stage, generation 0: CPU per individual min' "$tmp/cost.csv" &&
+   [ "$(awk -F, '/^[0-9]+,/ { s = s $1 " "; if ($6 <= 0 || $6 > 1.0001) s = s "bad " } END { print s }' \
+        "$tmp/model.txt")" = "1 2 4 " ]; then
+  ok "eval_cost's per-individual costs feed tools/mpi_model.py"
+else
+  ko "eval_cost / mpi_model" "$(cat "$tmp/cost.err" "$tmp/model.txt")"
+fi
+
 # ---- MPI ----
 skip() {
   echo "$CHECK: skipped: $1 (the MPI checks)"
@@ -45,8 +57,17 @@ skip() {
   exit
 }
 command -v mpirun > /dev/null || skip "no mpirun (make deps installs OpenMPI)"
-"$EV" --help 2>&1 | grep -q "built with MPI" || skip "$EV was built without MPI (MPI=0 or no mpicc)"
 if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+if ! "$EV" --help 2>&1 | grep -q "built with MPI"; then
+  # an evolve without MPI under mpirun refuses (every rank would run the whole evolution)
+  timeout -k 10 60 mpirun -q --oversubscribe -n 2 "$EV" $cfg --out "$tmp/nompi" > /dev/null 2> "$tmp/nompi.err"; rc=$?
+  if [ $rc != 0 ] && [ ! -e "$tmp/nompi" ] && [ "$(grep -c "started as 2 MPI ranks, but built without MPI" "$tmp/nompi.err")" = 1 ]; then
+    ok "an evolve built without MPI refuses to run as several ranks"
+  else
+    ko "evolve without MPI under mpirun" "$(cat "$tmp/nompi.err")"
+  fi
+  skip "$EV was built without MPI (MPI=0 or no mpicc)"
+fi
 # under AddressSanitizer (make asan) the ranks run without LeakSanitizer: OpenMPI leaves
 # allocations of its components (unloaded at MPI_Finalize, so not even suppressible by library)
 # unfreed; every other check of the sanitizers stays on
