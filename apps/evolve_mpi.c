@@ -66,9 +66,14 @@ enum { CTRL_SETUP = 1, CTRL_GO, CTRL_STOP };
 enum { DOWN_TASK = 1, DOWN_STOP };
 
 #define BUILD_ID_MAX 160
-#define POLL_MAX_COORD 2e-4 /* rank 0's longest nap while waiting for results (s) */
-#define POLL_MAX_SLOT 2e-4  /* a slot's, waiting for its next task */
-#define POLL_MAX_IDLE 1e-2  /* a worker's, waiting for the set-up or the go */
+/* Waiting is polling with naps that double up to a longest nap: NAP_SHARE of the evaluations'
+ * wall time (the delay it can add to an exchange, on average half of it), within [NAP_MIN,
+ * NAP_MAX]: about 0.2 ms for simple-prim (2 ms an individual), 2 ms for main-prim (0.4 s), so
+ * that a rank that waits costs next to no CPU (rank 0 waits all the time). */
+#define NAP_SHARE 0.005
+#define NAP_MIN 5e-5
+#define NAP_MAX 5e-3
+#define POLL_MAX_IDLE 1e-2 /* a worker's longest nap, waiting for the set-up or the go */
 #define DEFAULT_TIMEOUT 1800.0
 
 typedef struct ctrlMsg {
@@ -120,6 +125,9 @@ static void nap(double *delay, double max) {
   nanosleep(&ts, NULL);
   *delay = fmin(2.0 * *delay, max);
 }
+
+/* the longest nap while evaluations take wall seconds each */
+static double nap_max(double wall) { return fmin(NAP_MAX, fmax(NAP_MIN, NAP_SHARE * wall)); }
 
 static const char *build_id(void) {
   static char id[BUILD_ID_MAX];
@@ -205,13 +213,14 @@ static void worker_setup(worker *w, const ctrlMsg *m, int foreign, readyMsg *r) 
   }
 }
 
-/* waits for this slot's requests, testing them under the lock MPI_THREAD_SERIALIZED asks for */
-static void slot_wait(MPI_Request *req, int n) {
+/* waits for this slot's requests, testing them under the lock MPI_THREAD_SERIALIZED asks for;
+ * wall: the slot's last evaluation (s), which sets the longest nap */
+static void slot_wait(MPI_Request *req, int n, double wall) {
   int done = 0;
   for (double d = 1e-5; !done;) {
 #pragma omp critical(st_mpi)
     WCHECK(MPI_Testall(n, req, &done, MPI_STATUSES_IGNORE));
-    if (!done) nap(&d, POLL_MAX_SLOT);
+    if (!done) nap(&d, nap_max(wall));
   }
 }
 
@@ -225,7 +234,7 @@ static void slot_exchange(const upMsg *up, downMsg *down) {
                      &req[0]));
     WCHECK(MPI_Isend(up, (int)sizeof *up, MPI_BYTE, 0, TAG_UP, MPI_COMM_WORLD, &req[1]));
   }
-  slot_wait(req, 2);
+  slot_wait(req, 2, up->wall);
 }
 
 static void slot_serve(worker *w, int slot) {
@@ -268,7 +277,7 @@ int app_mpi_serve(void) {
       worker_setup(&w, m, foreign, &r);
       MPI_Request req;
       WCHECK(MPI_Isend(&r, (int)sizeof r, MPI_BYTE, 0, TAG_READY, MPI_COMM_WORLD, &req));
-      slot_wait(&req, 1);
+      slot_wait(&req, 1, 0.0);
     } else {
       if (m->kind == CTRL_GO) worker_serve(&w);
       done = 1;
@@ -353,6 +362,9 @@ static stStatus coord_fail(const char *what, int rc, char *err, size_t errsz) {
   return ST_ERR_IO;
 }
 
+/* the evaluations' mean wall time so far (0 before the first) */
+static double mean_wall(void) { return g.ncpu ? g.busy / (double)g.ncpu : 0.0; }
+
 /* how long the other ranks have been silent: a gap in rank 0's own polling (a suspended job)
  * does not count */
 typedef struct silence {
@@ -398,7 +410,7 @@ static stStatus wait_message(int tag, MPI_Status *s, char *err, size_t errsz) {
     if (rc != MPI_SUCCESS) return coord_fail("MPI_Iprobe", rc, err, errsz);
     if (flag) return ST_OK;
     if (too_long(&q)) return timed_out("no rank answered", err, errsz);
-    nap(&d, POLL_MAX_COORD);
+    nap(&d, nap_max(mean_wall()));
   }
 }
 
@@ -419,7 +431,7 @@ static stStatus send_wait(const void *buf, size_t size, int dest, int tag, char 
       snprintf(what, sizeof what, "rank %d took no message", dest);
       return timed_out(what, err, errsz);
     }
-    nap(&d, POLL_MAX_COORD);
+    nap(&d, nap_max(mean_wall()));
   }
 }
 

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT
  * libselftalk: an evolution run of the primitive stages (thesis §2.4, §2.7-§2.8) or of the
- * integrated stage (§2.9, selftalk/integrated.h) - the GA, parallel evaluation, termination,
- * stage chaining, output files, checkpoint and resume.
+ * integrated stage (§2.9, selftalk/integrated.h) - the GA, parallel evaluation (on this
+ * process's threads, or anywhere through an stEvolveEvaluator: below), termination, stage
+ * chaining, output files, checkpoint and resume.
  *
  * Files in the output directory:
  *   config.ini         the resolved configuration (written once)
@@ -75,8 +76,8 @@ typedef struct stEvolveResult {
 void st_evolve_task_run(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                         const stEvolveTask *task, stEvolveResult *result);
 
-/* Evaluates a generation somewhere else: fills results[i] for tasks[i], i < n (a result that
- * failed carries its status and message); cfg is the run's. Returns non-OK (with a message)
+/* Evaluates a generation somewhere else: fills results[i] for tasks[i], i < n (tasks[i] is
+ * individual i; a result that failed carries its status and message); cfg is the run's. Returns non-OK (with a message)
  * only when the evaluation itself broke down, e.g. a lost process; st_evolve_run then stops
  * with that error, its files and checkpoint those of the last finished generation. */
 struct stEvolveEvaluator {
