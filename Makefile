@@ -6,6 +6,8 @@
 #   make asan       tests under AddressSanitizer + UBSan
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
+#   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable
+#                   (tools/replicate.mk; README.md, "Replicating the study")
 #   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
 #                   to move results (tests/check_golden.sh)
 #   make install PREFIX=/usr/local
@@ -50,10 +52,16 @@ CPPFLAGS_ALL = -Iinclude -Ilib $(PKG_CFLAGS)
 CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(CFLAGS)
 CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
 
-# the core needs no simulator: a robot controller can link the network, GA and config alone
-CORE_MODULES := base rng config genome net ga prediction assemble
-CORE_SRC := $(CORE_MODULES:%=lib/%.c)
-SIM_SRC := $(filter-out $(CORE_SRC),$(wildcard lib/*.c)) $(wildcard lib/*.cpp)
+# lib/ by layer: core (network, GA, config, genomes, statistics: no simulator, so a robot
+# controller can link them alone), model (URDF, kinematics), world (kinematic and ODE
+# backends), task (postures, fitness, caretaker, scripted controller), episode (the one
+# episode loop and its trials), run (evolution), posteval (the post-evaluation tests). Objects
+# mirror the folders under build/obj/.
+LAYERS := core model world task episode run posteval
+STRAY_SRC := $(filter-out $(LAYERS:%=lib/%/),$(sort $(dir $(wildcard lib/*.c lib/*.cpp lib/*/*.c lib/*/*.cpp))))
+$(if $(STRAY_SRC),$(error sources outside the layer folders ($(STRAY_SRC)): move them into one of lib/{$(LAYERS)}/ or add a layer to LAYERS))
+CORE_SRC := $(wildcard lib/core/*.c)
+SIM_SRC := $(foreach l,$(filter-out core,$(LAYERS)),$(wildcard lib/$(l)/*.c lib/$(l)/*.cpp))
 CORE_OBJ := $(CORE_SRC:lib/%.c=$(BUILD)/obj/%.o)
 SIM_OBJ := $(patsubst lib/%,$(BUILD)/obj/%.o,$(basename $(SIM_SRC)))
 
@@ -73,7 +81,7 @@ TOOLS := $(patsubst tools/%.c,$(BUILD)/%,$(wildcard tools/*.c))
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(BUILD)/run_tests
 
-HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*.h)
+HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
   libassimp-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind libopenmpi-dev \
@@ -84,6 +92,7 @@ RUN_CONFIG := configs/simple_prim.cfg
 RUN_DIR := runs/simple_prim-s1
 
 .PHONY: FORCE all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
+  replicate replicate-only \
   bench-only golden-update install uninstall clean
 .DELETE_ON_ERROR:
 
@@ -101,9 +110,11 @@ deps:
 	fi
 
 $(BUILD)/obj/%.o: lib/%.c $(HEADERS) | $(BUILD)/obj
+	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -c $< -o $@
 
 $(BUILD)/obj/%.o: lib/%.cpp $(HEADERS) | $(BUILD)/obj
+	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS_ALL) $(CXXFLAGS_ALL) -c $< -o $@
 
 $(BUILD)/obj $(BUILD)/tobj:
@@ -150,10 +161,14 @@ $(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FU
 	  $(FULL_A) $(LIBS_TEST) $(LIBS_SIM) $(LIBS_CORE)
 
 # the targets that set up first: deps, then a fresh make that computes the flags (pkg_flags)
-test run asan valgrind bench: deps
+test run asan valgrind bench replicate: deps
 	@$(MAKE) --no-print-directory $@-only
 
 # the main job: the simple-prim stage, then what it gave (summary, files, PNG plot)
+# every step's files under OUT; a killed replication continues where it stopped
+replicate-only: all
+	@$(MAKE) --no-print-directory -f tools/replicate.mk PYTHON=$(PYTHON)
+
 run-only: all
 	./$(APPDIR)/evolve $(RUN_CONFIG) --out $(RUN_DIR)
 	@$(PYTHON) tools/run_report.py $(RUN_DIR)

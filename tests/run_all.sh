@@ -39,7 +39,12 @@ run_part "evolve under MPI: any number of ranks, faults, resume; cluster scripts
 run_part "committed primitive runs replay 16/16 in main-prim" bash tests/check_populations.sh
 run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
 run_part "integrated stage: score, conditions, resume, threads, replay" bash tests/check_integrated.sh
+run_part "post-evaluations: tables, exclusion, threads, bad input" bash tests/check_posteval.sh
 run_part "tools: run summaries and fitness plots" bash tests/check_tools.sh
+run_part "stats: Mann-Whitney U, quartiles, the thesis's tables" bash tests/check_stats.sh
+run_part "figures: the thesis's Figs. 3.1, 3.3-3.12 from CSVs" bash tests/check_figures.sh
+run_part "pictures of the robot: replay --shapes, tools/draw_trial.py" bash tests/check_pictures.sh
+run_part "make replicate: every step, killed and resumed (PRESET=tiny)" bash tests/check_replicate.sh
 run_part "golden results (tests/golden/golden.sha256)" bash tests/check_golden.sh
 if [ "$BUILD" = build ]; then
   run_part "install + pkg-config" bash tests/check_install.sh
