@@ -24,6 +24,11 @@ WERROR ?=
 PKGS_CORE := inih
 PKGS_SIM := ode ccd urdfdom assimp eigen3
 PKGS_TEST := cunit
+# MPI (issue 16): apps/evolve is compiled with $(MPICC) and the MPI code of apps/evolve_mpi.c
+# when mpicc is found (`make deps` installs Debian's OpenMPI); MPI=0 builds it without MPI,
+# exactly as before; MPI=1 fails when mpicc is missing. Nothing else uses MPI.
+MPICC ?= mpicc
+MPI ?= auto
 
 WARN := -Wall -Wextra -Wpedantic $(if $(WERROR),-Werror)
 # The packages' flags come from pkg-config, which only knows them once `make deps` has installed
@@ -37,6 +42,12 @@ PKG_CFLAGS = $(eval PKG_CFLAGS := $(call pkg_flags,--cflags $(PKGS_CORE) $(PKGS_
 LIBS_CORE = $(eval LIBS_CORE := $(call pkg_flags,--libs $(PKGS_CORE)) -lm)$(LIBS_CORE)
 LIBS_SIM = $(eval LIBS_SIM := $(call pkg_flags,--libs $(PKGS_SIM)) -lstdc++ -lgomp)$(LIBS_SIM)
 LIBS_TEST = $(eval LIBS_TEST := $(call pkg_flags,--libs $(PKGS_TEST)))$(LIBS_TEST)
+# 1 when apps/evolve is built with MPI (computed, like the packages' flags, when first needed)
+HAVE_MPI = $(eval HAVE_MPI := $(call mpi_found))$(HAVE_MPI)
+mpi_found = $(if $(filter 0 no,$(MPI)),,$(if $(shell command -v $(MPICC) 2>/dev/null),1,$(if \
+  $(filter 1 yes,$(MPI)),$(error MPI=$(MPI) but $(MPICC) is not found: `make deps` installs OpenMPI))))
+# mpicc wraps $(CC) (OpenMPI and MPICH both honour these)
+EVOLVE_CC = $(if $(HAVE_MPI),OMPI_CC="$(CC)" MPICH_CC="$(CC)" $(MPICC) -DST_WITH_MPI,$(CC))
 CPPFLAGS_ALL = -Iinclude -Ilib $(PKG_CFLAGS)
 CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(CFLAGS)
 CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
@@ -61,7 +72,8 @@ FULL_SO := $(BUILD)/libselftalk.so
 
 APP_SRC := $(wildcard apps/*.c)
 APP_COMMON := apps/app_common.c
-APP_MAINS := $(filter-out $(APP_COMMON),$(APP_SRC))
+APP_MPI := apps/evolve_mpi.c
+APP_MAINS := $(filter-out $(APP_COMMON) $(APP_MPI),$(APP_SRC))
 APPS := $(APP_MAINS:apps/%.c=$(APPDIR)/%)
 # diagnostics built from tools/*.c (not part of the protocol; see each file's header)
 TOOLS := $(patsubst tools/%.c,$(BUILD)/%,$(wildcard tools/*.c))
@@ -72,13 +84,14 @@ TEST_BIN := $(BUILD)/run_tests
 HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
-  libassimp-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind
+  libassimp-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind libopenmpi-dev \
+  openmpi-bin
 # Debian's interpreter, which python3-matplotlib serves (another python3 may come first in PATH)
 PYTHON := /usr/bin/python3
 RUN_CONFIG := configs/simple_prim.cfg
 RUN_DIR := runs/simple_prim-s1
 
-.PHONY: all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
+.PHONY: FORCE all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
   replicate replicate-only \
   bench-only golden-update install uninstall clean
 .DELETE_ON_ERROR:
@@ -123,6 +136,18 @@ $(FULL_SO): $(CORE_OBJ) $(SIM_OBJ)
 $(APPDIR)/%: apps/%.c $(APP_COMMON) apps/app_common.h $(FULL_A) $(HEADERS)
 	@mkdir -p $(APPDIR)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(APP_COMMON) $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
+
+# evolve: with MPI when HAVE_MPI (the stamp rebuilds it when that changes)
+$(APPDIR)/evolve: apps/evolve.c $(APP_MPI) apps/evolve_mpi.h $(APP_COMMON) apps/app_common.h \
+  $(FULL_A) $(HEADERS) $(BUILD)/evolve-mpi.stamp
+	@mkdir -p $(APPDIR)
+	$(EVOLVE_CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(APP_MPI) $(APP_COMMON) $(FULL_A) \
+	  $(LIBS_SIM) $(LIBS_CORE)
+
+$(BUILD)/evolve-mpi.stamp: FORCE | $(BUILD)/obj
+	@echo 'mpi=$(HAVE_MPI)' | cmp -s - $@ || echo 'mpi=$(HAVE_MPI)' > $@
+
+FORCE:
 
 $(BUILD)/%: tools/%.c $(FULL_A) $(HEADERS)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)

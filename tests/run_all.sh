@@ -35,6 +35,7 @@ run_part "neteval against the independent reference" bash tests/check_neteval.sh
 run_part "apps: argument and input errors" bash tests/check_apps.sh
 run_part "simprobe against iKin v1.0" bash tests/check_simprobe.sh
 run_part "evolve: threads, kill and resume, bad input" bash tests/check_evolve.sh
+run_part "evolve under MPI: any number of ranks, faults, resume; cluster scripts" bash tests/check_mpi.sh
 run_part "committed primitive runs replay 16/16 in main-prim" bash tests/check_populations.sh
 run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
 run_part "integrated stage: score, conditions, resume, threads, replay" bash tests/check_integrated.sh

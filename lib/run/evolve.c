@@ -40,6 +40,8 @@ typedef struct run {
   stWorkspace *ws;    /* one per thread */
   stEvaluation *eval; /* per individual (primitive stages) */
   stIntEvaluation *ieval; /* per individual (integrated stage) */
+  stEvolveTask *tasks;    /* per individual: what to evaluate, */
+  stEvolveResult *results; /* and what it gave */
   double *fitness;
   stGenome *sorted;   /* the final population, best first */
   double *sorted_fit;
@@ -154,44 +156,49 @@ static const char *stage_label(const run *R) {
   return R->integrated ? "integrated" : st_stage_name(R->stages[R->stage_idx]);
 }
 
-/* genotype i of the current generation: its fitness, or NAN and a message */
-static stStatus evaluate_one(run *R, stWorkspace *ws, int generation, int i, char *e, size_t n) {
-  stNetParams np;
-  const stNetArch arch = R->integrated ? R->idef.arch : PRIM_ARCH;
-  stStatus st = st_net_decode(&R->proto->net, arch, st_ga_genome(R->ga, i), &np, e, n);
-  if (!st && R->integrated)
-    st = st_int_evaluate(R->proto, &R->idef, ws, generation, i, &np, &R->ieval[i], e, n);
-  else if (!st)
-    st = st_stage_evaluate(R->proto, ws, R->stages[R->stage_idx], generation, i, &np, &R->eval[i],
-                           e, n);
-  R->fitness[i] = st ? NAN : R->integrated ? R->ieval[i].fitness : R->eval[i].fitness;
-  return st;
+/* the generation's tasks: the individuals in GA order */
+static void make_tasks(run *R, int generation) {
+  for (int i = 0; i < st_ga_def(R->ga)->population; i++) {
+    stEvolveTask *t = &R->tasks[i];
+    t->integrated = R->integrated;
+    t->stage = R->stages[R->stage_idx];
+    t->generation = generation;
+    t->individual = i;
+    t->genome = *st_ga_genome(R->ga, i);
+  }
 }
 
-static stStatus evaluate(run *R, int generation, char *err, size_t errsz) {
-  const stGaDef *gd = st_ga_def(R->ga);
-  int failed = -1;
-  stStatus first = ST_OK;
-  char msg[512] = "";
+/* every task on this process's threads */
+static void evaluate_here(run *R) {
+  const int n = st_ga_def(R->ga)->population;
 #pragma omp parallel num_threads(R->threads)
   {
     stWorkspace *ws = &R->ws[omp_get_thread_num()];
 #pragma omp for schedule(dynamic, 1)
-    for (int i = 0; i < gd->population; i++) {
-      char e[512];
-      stStatus st = evaluate_one(R, ws, generation, i, e, sizeof e);
-      if (st) {
-#pragma omp critical
-        if (failed < 0 || i < failed) {
-          failed = i;
-          first = st;
-          st__strlcpy(msg, e, sizeof msg);
-        }
-      }
-    }
+    for (int i = 0; i < n; i++)
+      st_evolve_task_run(R->proto, &R->idef, ws, &R->tasks[i], &R->results[i]);
   }
-  if (failed >= 0) st__errf(err, errsz, "evaluating genotype %d: %s", failed, msg);
-  return first;
+}
+
+/* the genotypes' fitness, or the first that could not be evaluated */
+static stStatus evaluate(run *R, int generation, char *err, size_t errsz) {
+  const int n = st_ga_def(R->ga)->population;
+  make_tasks(R, generation);
+  const stEvolveEvaluator *ev = R->def->evaluator;
+  stStatus st = ST_OK;
+  if (!ev) evaluate_here(R);
+  else if ((st = ev->evaluate(ev->self, R->cfg, R->tasks, n, R->results, err, errsz))) return st;
+  for (int i = 0; i < n; i++) {
+    const stEvolveResult *r = &R->results[i];
+    if (r->status) {
+      st__errf(err, errsz, "evaluating genotype %d: %s", i, r->err);
+      return r->status;
+    }
+    R->eval[i] = r->eval;
+    R->ieval[i] = r->ieval;
+    R->fitness[i] = r->fitness;
+  }
+  return ST_OK;
 }
 
 /* ---- output ---- */
@@ -537,7 +544,11 @@ static stStatus allocate(run *R, char *err, size_t errsz) {
   R->fitness = calloc(n, sizeof *R->fitness);
   R->sorted = calloc(n, sizeof *R->sorted);
   R->sorted_fit = calloc(n, sizeof *R->sorted_fit);
-  if (R->ws && R->eval && R->ieval && R->fitness && R->sorted && R->sorted_fit) return ST_OK;
+  R->tasks = calloc(n, sizeof *R->tasks);
+  R->results = calloc(n, sizeof *R->results);
+  if (R->ws && R->eval && R->ieval && R->fitness && R->sorted && R->sorted_fit && R->tasks &&
+      R->results)
+    return ST_OK;
   st__errf(err, errsz, "evolve: out of memory");
   return ST_ERR_NOMEM;
 }
@@ -550,6 +561,8 @@ static void release(run *R) {
   free(R->fitness);
   free(R->sorted);
   free(R->sorted_fit);
+  free(R->tasks);
+  free(R->results);
   st_ga_destroy(R->ga);
   st_protocol_destroy(R->proto);
 }
