@@ -560,7 +560,7 @@ stStatus st_config_check_changes(const stConfig *cfg, const stConfig *base, cons
     const stConfigKey *k = &g_keys[i];
     const stageKey *r = stage_key(k);
     if (!r || (r->stages & stages) || is_default(cfg, base, k)) continue;
-    char v[ST_CONFIG_STR_MAX + 32], bv[ST_CONFIG_STR_MAX + 32], readers[160], run[160];
+    char v[ST_CONFIG_STR_MAX + 32], bv[ST_CONFIG_STR_MAX + 32], readers[256], run[256];
     format_value(cfg, k, v, sizeof v);
     format_value(base, k, bv, sizeof bv);
     if (k->type == ST_CFG_REAL) {
