@@ -12,6 +12,7 @@
  * rank 0 keeps the requests it cannot serve yet (the generation is handed out) for the next
  * generation, or answers them STOP at the end. */
 #define _POSIX_C_SOURCE 200809L
+#include "app_common.h"
 #include "evolve_mpi.h"
 
 #ifndef ST_WITH_MPI
@@ -58,7 +59,7 @@ const stEvolveEvaluator *app_mpi_evaluator(int threads, const char *out_dir, FIL
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+#include <time.h> /* nanosleep */
 #include <unistd.h>
 
 enum { TAG_CTRL = 1, TAG_READY, TAG_UP, TAG_DOWN = 16 };
@@ -106,17 +107,8 @@ static int g_rank, g_size, g_thread_level;
 
 int app_mpi_built(void) { return 1; }
 
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static double thread_cpu(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+static double now(void) { return app_seconds(APP_WALL); }
+static double thread_cpu(void) { return app_seconds(APP_THREAD_CPU); }
 
 /* sleeps *delay, then doubles it up to max: waiting costs next to no CPU (OpenMPI's blocking
  * calls spin a core, which other ranks or runs on the node need) */
