@@ -6,6 +6,8 @@
 #   make asan       tests under AddressSanitizer + UBSan
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
+#   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable
+#                   (tools/replicate.mk; README.md, "Replicating the study")
 #   make fuzz       fuzz targets (clang's libFuzzer, ASan + UBSan) and seed corpora in build-fuzz/;
 #                   make fuzz-run [FUZZ_RUNS=1000000] runs each (not part of make test)
 #   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
@@ -24,6 +26,11 @@ WERROR ?=
 PKGS_CORE := inih
 PKGS_SIM := ode ccd urdfdom tinyxml assimp eigen3
 PKGS_TEST := cunit
+# MPI (issue 16): apps/evolve is compiled with $(MPICC) and the MPI code of apps/evolve_mpi.c
+# when mpicc is found (`make deps` installs Debian's OpenMPI); MPI=0 builds it without MPI,
+# exactly as before; MPI=1 fails when mpicc is missing. Nothing else uses MPI.
+MPICC ?= mpicc
+MPI ?= auto
 
 WARN := -Wall -Wextra -Wpedantic $(if $(WERROR),-Werror)
 # The packages' flags come from pkg-config, which only knows them once `make deps` has installed
@@ -37,14 +44,26 @@ PKG_CFLAGS = $(eval PKG_CFLAGS := $(call pkg_flags,--cflags $(PKGS_CORE) $(PKGS_
 LIBS_CORE = $(eval LIBS_CORE := $(call pkg_flags,--libs $(PKGS_CORE)) -lm)$(LIBS_CORE)
 LIBS_SIM = $(eval LIBS_SIM := $(call pkg_flags,--libs $(PKGS_SIM)) -lstdc++ -lgomp)$(LIBS_SIM)
 LIBS_TEST = $(eval LIBS_TEST := $(call pkg_flags,--libs $(PKGS_TEST)))$(LIBS_TEST)
+# 1 when apps/evolve is built with MPI (computed, like the packages' flags, when first needed)
+HAVE_MPI = $(eval HAVE_MPI := $(call mpi_found))$(HAVE_MPI)
+mpi_found = $(if $(filter 0 no,$(MPI)),,$(if $(shell command -v $(MPICC) 2>/dev/null),1,$(if \
+  $(filter 1 yes,$(MPI)),$(error MPI=$(MPI) but $(MPICC) is not found: `make deps` installs OpenMPI))))
+# mpicc wraps $(CC) (OpenMPI and MPICH both honour these)
+EVOLVE_CC = $(if $(HAVE_MPI),OMPI_CC="$(CC)" MPICH_CC="$(CC)" $(MPICC) -DST_WITH_MPI,$(CC))
 CPPFLAGS_ALL = -Iinclude -Ilib $(PKG_CFLAGS)
 CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(CFLAGS)
 CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
 
-# the core needs no simulator: a robot controller can link the network, GA and config alone
-CORE_MODULES := base rng config genome net ga prediction assemble checkpoint
-CORE_SRC := $(CORE_MODULES:%=lib/%.c)
-SIM_SRC := $(filter-out $(CORE_SRC),$(wildcard lib/*.c)) $(wildcard lib/*.cpp)
+# lib/ by layer: core (network, GA, config, genomes, statistics: no simulator, so a robot
+# controller can link them alone), model (URDF, kinematics), world (kinematic and ODE
+# backends), task (postures, fitness, caretaker, scripted controller), episode (the one
+# episode loop and its trials), run (evolution), posteval (the post-evaluation tests). Objects
+# mirror the folders under build/obj/.
+LAYERS := core model world task episode run posteval
+STRAY_SRC := $(filter-out $(LAYERS:%=lib/%/),$(sort $(dir $(wildcard lib/*.c lib/*.cpp lib/*/*.c lib/*/*.cpp))))
+$(if $(STRAY_SRC),$(error sources outside the layer folders ($(STRAY_SRC)): move them into one of lib/{$(LAYERS)}/ or add a layer to LAYERS))
+CORE_SRC := $(wildcard lib/core/*.c)
+SIM_SRC := $(foreach l,$(filter-out core,$(LAYERS)),$(wildcard lib/$(l)/*.c lib/$(l)/*.cpp))
 CORE_OBJ := $(CORE_SRC:lib/%.c=$(BUILD)/obj/%.o)
 SIM_OBJ := $(patsubst lib/%,$(BUILD)/obj/%.o,$(basename $(SIM_SRC)))
 
@@ -55,7 +74,8 @@ FULL_SO := $(BUILD)/libselftalk.so
 
 APP_SRC := $(wildcard apps/*.c)
 APP_COMMON := apps/app_common.c
-APP_MAINS := $(filter-out $(APP_COMMON),$(APP_SRC))
+APP_MPI := apps/evolve_mpi.c
+APP_MAINS := $(filter-out $(APP_COMMON) $(APP_MPI),$(APP_SRC))
 APPS := $(APP_MAINS:apps/%.c=$(APPDIR)/%)
 # diagnostics built from tools/*.c (not part of the protocol; see each file's header)
 TOOLS := $(patsubst tools/%.c,$(BUILD)/%,$(wildcard tools/*.c))
@@ -63,16 +83,18 @@ TOOLS := $(patsubst tools/%.c,$(BUILD)/%,$(wildcard tools/*.c))
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(BUILD)/run_tests
 
-HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*.h)
+HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
-  libassimp-dev libtinyxml-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind
+  libassimp-dev libtinyxml-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind \
+  libopenmpi-dev openmpi-bin
 # Debian's interpreter, which python3-matplotlib serves (another python3 may come first in PATH)
 PYTHON := /usr/bin/python3
 RUN_CONFIG := configs/simple_prim.cfg
 RUN_DIR := runs/simple_prim-s1
 
-.PHONY: all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
+.PHONY: FORCE all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
+  replicate replicate-only \
   bench-only golden-update install uninstall clean fuzz fuzz-run
 .DELETE_ON_ERROR:
 
@@ -90,9 +112,11 @@ deps:
 	fi
 
 $(BUILD)/obj/%.o: lib/%.c $(HEADERS) | $(BUILD)/obj
+	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -c $< -o $@
 
 $(BUILD)/obj/%.o: lib/%.cpp $(HEADERS) | $(BUILD)/obj
+	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS_ALL) $(CXXFLAGS_ALL) -c $< -o $@
 
 $(BUILD)/obj $(BUILD)/tobj:
@@ -115,6 +139,18 @@ $(APPDIR)/%: apps/%.c $(APP_COMMON) apps/app_common.h $(FULL_A) $(HEADERS)
 	@mkdir -p $(APPDIR)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(APP_COMMON) $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
 
+# evolve: with MPI when HAVE_MPI (the stamp rebuilds it when that changes)
+$(APPDIR)/evolve: apps/evolve.c $(APP_MPI) apps/evolve_mpi.h $(APP_COMMON) apps/app_common.h \
+  $(FULL_A) $(HEADERS) $(BUILD)/evolve-mpi.stamp
+	@mkdir -p $(APPDIR)
+	$(EVOLVE_CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(APP_MPI) $(APP_COMMON) $(FULL_A) \
+	  $(LIBS_SIM) $(LIBS_CORE)
+
+$(BUILD)/evolve-mpi.stamp: FORCE | $(BUILD)/obj
+	@echo 'mpi=$(HAVE_MPI)' | cmp -s - $@ || echo 'mpi=$(HAVE_MPI)' > $@
+
+FORCE:
+
 $(BUILD)/%: tools/%.c $(FULL_A) $(HEADERS)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
 
@@ -127,10 +163,14 @@ $(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FU
 	  $(FULL_A) $(LIBS_TEST) $(LIBS_SIM) $(LIBS_CORE)
 
 # the targets that set up first: deps, then a fresh make that computes the flags (pkg_flags)
-test run asan valgrind bench: deps
+test run asan valgrind bench replicate: deps
 	@$(MAKE) --no-print-directory $@-only
 
 # the main job: the simple-prim stage, then what it gave (summary, files, PNG plot)
+# every step's files under OUT; a killed replication continues where it stopped
+replicate-only: all
+	@$(MAKE) --no-print-directory -f tools/replicate.mk PYTHON=$(PYTHON)
+
 run-only: all
 	./$(APPDIR)/evolve $(RUN_CONFIG) --out $(RUN_DIR)
 	@$(PYTHON) tools/run_report.py $(RUN_DIR)
@@ -169,7 +209,7 @@ FUZZ_DIR := build-fuzz
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_FLAGS := -g -O1 $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 FUZZ_TARGETS := config genome urdf checkpoint
-FUZZ_LIB := base rng config genome checkpoint model model_urdf
+FUZZ_LIB := core/base core/rng core/config core/genome core/checkpoint model/model model/model_urdf
 FUZZ_OBJ := $(FUZZ_LIB:%=$(FUZZ_DIR)/obj/%.o)
 FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
 FUZZ_RUNS ?= 1000000

@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: MIT */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "app_common.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 void app_die(const char *prog, const char *fmt, ...) {
   va_list ap;
@@ -59,4 +61,11 @@ void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog)
   if (a->config_path && st_config_load(a->config_path, cfg, err, sizeof err)) app_die(prog, "%s", err);
   if (st_config_set_all(cfg, (const char *const *)a->sets, a->nsets, err, sizeof err))
     app_die(prog, "%s", err);
+}
+
+double app_seconds(appClock which) {
+  static const clockid_t ids[] = {CLOCK_MONOTONIC, CLOCK_PROCESS_CPUTIME_ID, CLOCK_THREAD_CPUTIME_ID};
+  struct timespec ts;
+  clock_gettime(ids[which], &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }

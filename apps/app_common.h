@@ -28,4 +28,8 @@ int app_config_arg(appConfigArgs *a, int argc, char **argv, int *i, const char *
 /* Defaults, then the config file (if any), then the overrides; dies on any error. */
 void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog);
 
+/* Seconds on one of three clocks: wall (monotonic), the process's CPU, the calling thread's CPU. */
+typedef enum appClock { APP_WALL, APP_PROCESS_CPU, APP_THREAD_CPU } appClock;
+double app_seconds(appClock which);
+
 #endif

@@ -30,19 +30,11 @@
 
 static const char *prog = "bench";
 
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+static double now(void) { return app_seconds(APP_WALL); }
 
 /* CPU seconds of the whole process: per-core rates that another load on the machine barely
  * moves (wall-clock rates are printed beside them) */
-static double cpu_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+static double cpu_now(void) { return app_seconds(APP_PROCESS_CPU); }
 
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;

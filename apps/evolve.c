@@ -6,12 +6,16 @@
  *
  * Prints one progress line per generation; writes config.ini, fitness.csv, best.genome,
  * population.genome and an atomic checkpoint into DIR (default runs/CONFIGNAME-sSEED).
- * --resume continues a killed run from DIR/checkpoint and ends with the same files. */
+ * --resume continues a killed run from DIR/checkpoint and ends with the same files.
+ *
+ * Under mpirun (built with MPI: evolve_mpi.h) rank 0 does all of the above and the other ranks
+ * evaluate the individuals; the files are the same for any number of ranks. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app_common.h"
+#include "evolve_mpi.h"
 #include "selftalk/evolve.h"
 
 static const char *prog = "evolve";
@@ -19,9 +23,14 @@ static const char *prog = "evolve";
 static void usage(FILE *f) {
   fprintf(f, "usage: evolve CONFIG [--seed N] [--out DIR] [--threads N] [--generations N] [--resume]\n"
              "              [--set section.key=value]... [--help-config]\n");
+  if (app_mpi_built())
+    fprintf(f, "       mpirun -n N evolve CONFIG ...  (built with MPI: rank 0 runs the GA and writes the "
+               "files,\n              ranks 1..N-1 evaluate, each on --threads threads)\n");
 }
 
 int main(int argc, char **argv) {
+  /* the other ranks of an MPI job evaluate what rank 0 hands them; they never read argv */
+  if (app_mpi_start(&argc, &argv) == APP_MPI_WORKER) return app_mpi_serve();
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *out = NULL;
@@ -58,7 +67,8 @@ int main(int argc, char **argv) {
   }
   printf("evolve: %s, seed %d, output in %s\n", ca.config_path, cfg.run_seed, out);
   fflush(stdout);
-  stEvolveDef def = {&cfg, out, threads, generations, resume, stdout};
+  stEvolveDef def = {&cfg, out, threads, generations, resume, stdout,
+                     app_mpi_evaluator(threads, out, stdout)};
   char err[2048];
   if (st_evolve_run(&def, err, sizeof err)) app_die(prog, "%s", err);
   return 0;

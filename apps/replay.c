@@ -21,6 +21,12 @@
  * --force overrides network output OUT (0..11 the DOF of SPEC §3, 12 focus) with VALUE (0..1)
  * from step STEP on (default 0): what the individual would do with, e.g., its thumb opposed.
  *
+ * --shapes FILE writes the collision shapes (st_world_shapes: every robot geometry, the ball,
+ * the table, the target) of the state after the chosen steps' actions, one CSV row per shape:
+ * step,kind,owner,type,sx,sy,sz,px,py,pz,r00..r22 (docs/PROTOCOL.md, "Robot pictures"). The
+ * steps: --at LIST (step numbers and "last", the trial's last step, comma-separated) and/or
+ * --shapes-every N (steps 0, N, 2N, ... and the last); every step without either.
+ *
  * The trace has one row per step: joints, palm, object, target, touch, focus, the linguistic
  * inputs, S, P, events, the fitness quantities, then the caretaker's word given at the step
  * (-1 none; in primitive trials the trial's word), the self-talk label produced at the step (a
@@ -33,10 +39,12 @@
 #include "app_common.h"
 #include "selftalk/integrated.h"
 #include "selftalk/trial.h"
+#include "selftalk/world.h"
 
 static const char *prog = "replay";
 
 #define MAX_FORCE 32
+#define MAX_AT 256
 #define MAX_STEP 100000 /* far beyond any trial; keeps the step an int */
 
 /* --force OUT=VALUE[@STEP] */
@@ -70,11 +78,110 @@ static stForce force_arg(const char *v) {
   return f;
 }
 
+/* --shapes FILE: the shapes of the chosen steps */
+typedef struct shapesOut {
+  FILE *f;
+  const char *path;
+  int every;           /* --shapes-every N (0: none) */
+  int at[MAX_AT], nat; /* --at's step numbers */
+  int last;            /* the trial's last step too */
+  stShape *buf;        /* the shapes of the latest step traced */
+  int n;               /* shapes per step */
+  int buf_step;        /* the step in buf, -1 none */
+  int written;         /* the last step written, -1 none */
+  int nwritten;        /* steps written */
+  int digits;
+} shapesOut;
+
 typedef struct traceCtx {
   FILE *f;
   stNetArch arch;
   int digits; /* significant digits of the trace's reals: 9, or 17 with --exact */
+  shapesOut *shapes; /* NULL without --shapes */
 } traceCtx;
+
+/* --at LIST: step numbers and "last", comma-separated */
+static void at_arg(shapesOut *so, const char *v) {
+  const char *s = v;
+  for (;;) {
+    char *end;
+    if (!strncmp(s, "last", 4) && (s[4] == ',' || !s[4])) {
+      so->last = 1;
+      end = (char *)s + 4;
+    } else {
+      const long x = strtol(s, &end, 10);
+      if (*s < '0' || *s > '9' || (*end && *end != ',') || x > MAX_STEP)
+        app_die(prog, "--at '%s': expected step numbers 0..%d and 'last', comma-separated (e.g. "
+                "0,40,last)", v, MAX_STEP);
+      if (so->nat == MAX_AT) app_die(prog, "--at '%s': at most %d steps", v, MAX_AT);
+      so->at[so->nat++] = (int)x;
+    }
+    if (!*end) return;
+    s = end + 1;
+  }
+}
+
+static void shapes_header(FILE *f) {
+  fprintf(f, "step,kind,owner,type,sx,sy,sz,px,py,pz,r00,r01,r02,r10,r11,r12,r20,r21,r22\n");
+}
+
+/* the file and a buffer of a world's shapes (counted on a world of the protocol's robot) */
+static shapesOut *shapes_open(shapesOut *so, const stProtocol *p, int digits) {
+  char err[1024];
+  stWorld *w = NULL;
+  if (st_world_create(p->robot, &p->scene, &w, err, sizeof err)) app_die(prog, "%s", err);
+  so->n = st_world_shapes(w, NULL, 0);
+  st_world_destroy(w);
+  so->buf = calloc((size_t)so->n, sizeof *so->buf);
+  if (!so->buf) app_die(prog, "out of memory");
+  so->digits = digits;
+  if (!(so->f = fopen(so->path, "w"))) app_die(prog, "%s: cannot write", so->path);
+  shapes_header(so->f);
+  return so;
+}
+
+static int at_step(const shapesOut *so, int step) {
+  if (so->every > 0 && step % so->every == 0) return 1;
+  for (int i = 0; i < so->nat; i++)
+    if (so->at[i] == step) return 1;
+  return so->every == 0 && so->nat == 0 && !so->last; /* neither: every step */
+}
+
+/* the shapes in so->buf as rows of step so->buf_step */
+static void shapes_write(shapesOut *so) {
+  for (int i = 0; i < so->n; i++) {
+    const stShape *sh = &so->buf[i];
+    fprintf(so->f, "%d,%s,%s,%s", so->buf_step, st_shape_kind_name(sh->kind), sh->owner,
+            st_geom_type_name(sh->type));
+    const double *v[3] = {sh->size, sh->pos, sh->R};
+    const int len[3] = {3, 3, 9};
+    for (int k = 0; k < 3; k++)
+      for (int j = 0; j < len[k]; j++) fprintf(so->f, ",%.*g", so->digits, v[k][j] + 0.0);
+    fputc('\n', so->f);
+  }
+  so->written = so->buf_step;
+  so->nwritten++;
+}
+
+static void shapes_step(shapesOut *so, const stWorld *w, int step) {
+  st_world_shapes(w, so->buf, so->n);
+  so->buf_step = step;
+  if (at_step(so, step)) shapes_write(so);
+}
+
+/* after the trial: the last step (--at last, --shapes-every), the steps --at asked for that the
+ * trial did not reach (a warning), the file closed */
+static void shapes_finish(shapesOut *so) {
+  if ((so->last || so->every > 0) && so->buf_step >= 0 && so->written != so->buf_step)
+    shapes_write(so);
+  for (int i = 0; i < so->nat; i++)
+    if (so->at[i] > so->buf_step)
+      fprintf(stderr, "replay: --at %d: the trial ended at step %d (no shapes for it)\n",
+              so->at[i], so->buf_step);
+  if (fclose(so->f) != 0) app_die(prog, "%s: write error", so->path);
+  free(so->buf);
+  fprintf(stderr, "replay: %s: %d shapes at each of %d steps\n", so->path, so->n, so->nwritten);
+}
 
 static void header(FILE *f) {
   fprintf(f, "step");
@@ -100,8 +207,7 @@ static void language(FILE *f, stNetArch arch, const stTraceStep *s) {
 
 static void real(const traceCtx *c, double x) { fprintf(c->f, ",%.*g", c->digits, x); }
 
-static void on_step(void *ctx, const stTraceStep *s) {
-  const traceCtx *c = ctx;
+static void trace_row(const traceCtx *c, const stTraceStep *s) {
   FILE *f = c->f;
   const stWorld *w = s->world;
   const stQuantities *q = s->q;
@@ -126,6 +232,12 @@ static void on_step(void *ctx, const stTraceStep *s) {
   fputc('\n', f);
 }
 
+static void on_step(void *ctx, const stTraceStep *s) {
+  const traceCtx *c = ctx;
+  if (c->shapes) shapes_step(c->shapes, s->world, s->step);
+  if (c->f) trace_row(c, s);
+}
+
 static const char *const ENDS[] = {"full", "success", "failure", "quiet"};
 
 /* a primitive trial and its share of F_p (the primitive's N_p spans its four trials); traced
@@ -141,8 +253,8 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
   char err[1024];
   uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
                               (uint64_t)index, (uint64_t)trial).key;
-  if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, trace->f ? on_step : NULL,
-                          trace, err, sizeof err))
+  const stTraceFn fn = trace->f || trace->shapes ? on_step : NULL;
+  if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, fn, trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
   long n_p = 0;
@@ -171,8 +283,9 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
   stIntTrialResult r;
   stPredScore pred;
   char err[1024];
-  if (st_int_trial_run(p, &def, &ws, generation, index, trial, np, &plan, &r, &pred,
-                       trace->f ? on_step : NULL, trace, err, sizeof err))
+  const stTraceFn fn = trace->f || trace->shapes ? on_step : NULL;
+  if (st_int_trial_run(p, &def, &ws, generation, index, trial, np, &plan, &r, &pred, fn, trace,
+                       err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
   printf("trial %d integrated k=%d words=%s fitness=%s success=%d steps=%ld/%ld end=%s "
@@ -206,6 +319,9 @@ int main(int argc, char **argv) {
   const char *genome = NULL, *out = NULL, *stage_name = NULL;
   int trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0, digits = 9;
   stForce force[MAX_FORCE];
+  shapesOut so;
+  memset(&so, 0, sizeof so);
+  so.buf_step = so.written = -1;
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     const char *a = argv[i];
@@ -216,6 +332,9 @@ int main(int argc, char **argv) {
       force[nforce++] = force_arg(argv[++i]);
     }
     else if (!strcmp(a, "--stage") && i + 1 < argc) stage_name = argv[++i];
+    else if (!strcmp(a, "--shapes") && i + 1 < argc) so.path = argv[++i];
+    else if (!strcmp(a, "--at") && i + 1 < argc) at_arg(&so, argv[++i]);
+    else if (!strcmp(a, "--shapes-every") && i + 1 < argc) so.every = app_int_arg(prog, a, argv[++i], 1);
     else if (!strcmp(a, "--exact")) digits = 17;
     else if (!strcmp(a, "--generation") && i + 1 < argc) generation = app_int_arg(prog, a, argv[++i], 0);
     else if (!strcmp(a, "--index") && i + 1 < argc) {
@@ -229,7 +348,10 @@ int main(int argc, char **argv) {
   }
   if (!genome || !ca.config_path)
     app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--exact] "
-                  "[--stage simple|main] [--generation G] [--index I] [--force OUT=VALUE[@STEP]]...");
+                  "[--stage simple|main] [--generation G] [--index I] [--force OUT=VALUE[@STEP]]... "
+                  "[--shapes FILE [--at STEP,...|last] [--shapes-every N]]");
+  if (!so.path && (so.nat || so.last || so.every))
+    app_die(prog, "--at and --shapes-every choose the steps of --shapes FILE: give --shapes");
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
   const int integrated = cfg.stage_stages == ST_STAGES_INTEGRATED;
@@ -264,12 +386,14 @@ int main(int argc, char **argv) {
   stNetParams np;
   if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);
-  traceCtx trace = {NULL, arch, digits};
+  traceCtx trace = {NULL, arch, digits, NULL};
   if (out && !(trace.f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
   if (trace.f) header(trace.f);
+  if (so.path) trace.shapes = shapes_open(&so, p, digits);
   if (integrated) replay_integrated(p, generation, index, trial, &np, &trace);
   else replay_primitive(p, stage, generation, index, trial, &np, force, nforce, &trace);
   if (trace.f && fclose(trace.f) != 0) app_die(prog, "%s: write error", out);
+  if (trace.shapes) shapes_finish(trace.shapes);
   st_protocol_destroy(p);
   return 0;
 }

@@ -142,7 +142,7 @@ expect "bad dynamics.kinematic_joints refused before the first stage" \
 # keys none of the run's stages reads are refused unless at their default (never silently
 # ignored): the integrated stage's keys in a primitive run, the dynamic world's in simple-prim
 expect "network.arch refused by the primitive stages" \
-  "key 'network.arch': A is read only by the integrated stage, which this run (simple-prim) does not have" \
+  "key 'network.arch': A is read only by the integrated stage and the integration, robustness and generalisation tests, which this run (simple-prim) does not have" \
   "$tmp/b4" "$EV" $cfg --out "$tmp/b4" --set network.arch=A
 for kv in network.typeb_init_gene=1 ga.mutation_rate_integrated=0.05 ga.integrated_generations=7; do
   expect "$kv refused by the primitive stages" "key '${kv%%=*}': ${kv#*=} is read only by the integrated stage" \

@@ -41,5 +41,26 @@ if cc -std=c99 docs/example_net.c -I"$tmp/prefix/include" "$tmp/prefix/lib/libse
 else
   ko "static core link"
 fi
+# the statistics are in the core: Hollander & Wolfe's example (tests/test_stats.c) against the
+# installed selftalk-core alone, p = 2 * 382 / 3003
+cat > "$tmp/mwu.c" <<'C'
+#include <stdio.h>
+#include <selftalk/stats.h>
+int main(void) {
+  const double x[] = {0.80, 0.83, 1.89, 1.04, 1.45, 1.38, 1.91, 1.64, 0.73, 1.46};
+  const double y[] = {1.15, 0.88, 0.90, 0.74, 1.21};
+  stMwuResult r;
+  if (st_mwu(NULL, x, 10, y, 5, &r, NULL, 0)) return 1;
+  printf("U=%g p=%.6f\n", r.u, r.p);
+  return 0;
+}
+C
+if cc -std=c99 -Wall -Wextra "$tmp/mwu.c" $(pkg-config --cflags --libs selftalk-core) -o "$tmp/mwu" &&
+   [ "$(LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/mwu")" = "U=15 p=0.254412" ] &&
+   ! LD_LIBRARY_PATH="$tmp/prefix/lib" ldd "$tmp/mwu" | grep -qE 'libode|libselftalk\.so'; then
+  ok "selftalk-core: st_mwu without the simulator"
+else
+  ko "selftalk-core: st_mwu without the simulator"
+fi
 echo "check_install: $pass passed, $fail failed"
 [ "$fail" = 0 ]

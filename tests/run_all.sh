@@ -37,10 +37,16 @@ run_part "simprobe against iKin v1.0" bash tests/check_simprobe.sh
 run_part "evolve: threads, kill and resume, bad input" bash tests/check_evolve.sh
 run_part "hostile inputs: checkpoints, URDFs, unbounded files, keys named" bash tests/check_inputs.sh
 run_part "fault injection: full disk, read-only directory, failing sync and rename" bash tests/check_faults.sh
+run_part "evolve under MPI: any number of ranks, faults, resume; cluster scripts" bash tests/check_mpi.sh
 run_part "committed primitive runs replay 16/16 in main-prim" bash tests/check_populations.sh
 run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
 run_part "integrated stage: score, conditions, resume, threads, replay" bash tests/check_integrated.sh
+run_part "post-evaluations: tables, exclusion, threads, bad input" bash tests/check_posteval.sh
 run_part "tools: run summaries and fitness plots" bash tests/check_tools.sh
+run_part "stats: Mann-Whitney U, quartiles, the thesis's tables" bash tests/check_stats.sh
+run_part "figures: the thesis's Figs. 3.1, 3.3-3.12 from CSVs" bash tests/check_figures.sh
+run_part "pictures of the robot: replay --shapes, tools/draw_trial.py" bash tests/check_pictures.sh
+run_part "make replicate: every step, killed and resumed (PRESET=tiny)" bash tests/check_replicate.sh
 run_part "golden results (tests/golden/golden.sha256)" bash tests/check_golden.sh
 if [ "$BUILD" = build ]; then
   run_part "install + pkg-config" bash tests/check_install.sh

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 #include <math.h>
+#include <stdlib.h>
 
 #include "selftalk/config.h"
 #include "test_util.h"
@@ -278,26 +279,39 @@ static void test_config_stage_keys(void) {
   CU_ASSERT_EQUAL(st_config_run_stages(&c), ST_CONFIG_INTEGRATED);
 
   const unsigned S = ST_CONFIG_SIMPLE_PRIM, M = ST_CONFIG_MAIN_PRIM, I = ST_CONFIG_INTEGRATED;
+  const unsigned PI = ST_CONFIG_INTEGRATION_TEST, PR = ST_CONFIG_ROBUSTNESS_TEST;
+  const unsigned PG = ST_CONFIG_GENERALISATION_TEST, P = ST_CONFIG_POSTEVAL, E = S | M | I;
   const unsigned ALL = ST_CONFIG_ALL_STAGES;
-  /* the integrated stage (lib/integrated.c, intscore.c) reads eq. 2.12 inside eq. 2.14, the
+  /* the integrated stage (lib/episode/integrated.c, intscore.c) reads eq. 2.12 inside eq. 2.14, the
    * object-moving penalty, fail_penalty and the dynamic world; not the grasp postures, the
    * harmonic mean or the object-touching penalty. The issue-12 hand's keys: the dynamic
-   * world's and a grasp posture's. */
+   * world's and a grasp posture's. The post-evaluations (lib/posteval/posteval.c, postrun.c) read the
+   * network, the dynamic world, the caretaker's conditions (integration, generalisation),
+   * integrated.steps (integration, robustness), the condition's words (robustness,
+   * generalisation), no fitness and no GA key; the generalisation test has its own object
+   * positions and target. */
   static const struct {
     const char *section, *name;
     unsigned stages;
   } rows[] = {
-      {"network", "arch", I}, {"network", "typeb_init_gene", I}, {"network", "gamma_a", I},
+      {"network", "arch", I | P}, {"network", "typeb_init_gene", I}, {"network", "gamma_a", I | P},
       {"network", "lambda", ALL}, {"ga", "mutation_rate_integrated", I},
       {"ga", "integrated_generations", I}, {"ga", "mutation_rate", S | M},
-      {"dynamics", "gravity", M | I}, {"stage", "simple_steps", S},
-      {"stage", "init_population", S | M}, {"fitness", "move_touch", M | I},
-      {"fitness", "move_free", M | I}, {"fitness", "fail_penalty", M | I},
-      {"fitness", "reach_hold_steps", M}, {"fitness", "fp_min", S | M},
-      {"fitness", "penalty_object", S | M}, {"fitness", "penalty_table", ALL},
-      {"integrated", "steps", I}, {"prediction", "window", I}, {"caretaker", "first_step", I},
-      {"dynamics", "kinematic_joints", M | I}, {"dynamics", "table_friction", M | I},
+      {"ga", "population", E}, {"dynamics", "gravity", M | I | P}, {"stage", "simple_steps", S},
+      {"stage", "init_population", S | M | PI}, {"stage", "stages", E | PI},
+      {"fitness", "move_touch", M | I}, {"fitness", "move_free", M | I},
+      {"fitness", "fail_penalty", M | I}, {"fitness", "reach_hold_steps", M},
+      {"fitness", "fp_min", S | M}, {"fitness", "penalty_object", S | M},
+      {"fitness", "penalty_table", E}, {"fitness", "open_h", E | PI | PG},
+      {"fitness", "reach_height", ALL}, {"scene", "target_offset", E | PI | PR},
+      {"scene", "target_radius", ALL}, {"scene", "object_center_x", ALL},
+      {"integrated", "steps", I | PI | PR}, {"integrated", "words_odd", I | PR | PG},
+      {"integrated", "first_generation", I | PG}, {"integrated", "hold_steps", I},
+      {"prediction", "window", I}, {"caretaker", "first_step", I | PI | PG},
+      {"dynamics", "kinematic_joints", M | I | P}, {"dynamics", "table_friction", M | I | P},
       {"postures", "grasp_partial_thumb_flex", S | M}, {"postures", "reach_clearance", ALL},
+      {"posteval", "integration_top", PI}, {"posteval", "robustness_trials", PR},
+      {"posteval", "generalisation_target_y", PG}, {"robot", "alpha_dynamic", M | I | P},
   };
   for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
     const unsigned got = st_config_key_stages(st_config_find(rows[i].section, rows[i].name));
@@ -306,18 +320,21 @@ static void test_config_stage_keys(void) {
               rows[i].stages);
     CU_ASSERT_EQUAL(got, rows[i].stages);
   }
-  /* every row of the table names a real key: 30 single keys plus the caretaker, integrated,
-   * prediction and dynamics sections and the open, grasp and move postures, counted here from
-   * the key table itself */
+  /* every row of the table names a real key: 22 single keys (network 5, robot 1, scene 6,
+   * stage 10) plus the ga, caretaker, integrated, prediction, dynamics and posteval sections,
+   * the fitness section but reach_height, and the open, grasp and move postures, counted here
+   * from the key table itself */
   int restricted = 0, whole = 0;
   for (int i = 0; i < st_config_nkeys(); i++) {
     const stConfigKey *k = st_config_key(i);
     restricted += st_config_key_stages(i) != ST_CONFIG_ALL_STAGES;
-    whole += !strcmp(k->section, "caretaker") || !strcmp(k->section, "integrated") ||
-             !strcmp(k->section, "prediction") || !strcmp(k->section, "dynamics") ||
+    whole += !strcmp(k->section, "ga") || !strcmp(k->section, "caretaker") ||
+             !strcmp(k->section, "integrated") || !strcmp(k->section, "prediction") ||
+             !strcmp(k->section, "dynamics") || !strcmp(k->section, "posteval") ||
+             (!strcmp(k->section, "fitness") && strcmp(k->name, "reach_height")) ||
              (!strcmp(k->section, "postures") && strncmp(k->name, "reach_", 6));
   }
-  CU_ASSERT_EQUAL(restricted, 30 + whole);
+  CU_ASSERT_EQUAL(restricted, 22 + whole);
 
   /* defaults pass every combination of stages */
   st_config_default(&c);
@@ -325,17 +342,21 @@ static void test_config_stage_keys(void) {
     CU_ASSERT_EQUAL(st_config_check_stages(&c, st, err, sizeof err), ST_OK);
   /* the integrated stage's keys: refused by the primitive stages, accepted by it */
   static const char *const integrated[][2] = {
-      {"network.arch=A", "key 'network.arch': A is read only by the integrated stage, which this "
-                         "run (simple-prim and main-prim) does not have: the primitive stages "
+      {"network.arch=A", "key 'network.arch': A is read only by the integrated stage and the "
+                         "integration, robustness and generalisation tests, which this run "
+                         "(simple-prim and main-prim) does not have: the primitive stages "
                          "evolve the base network"},
       {"network.typeb_init_gene=1", "key 'network.typeb_init_gene': 1 is read only by the integrated stage"},
       {"ga.mutation_rate_integrated=0.05", "key 'ga.mutation_rate_integrated': 0.05 is read only by "
                                             "the integrated stage"},
       {"ga.integrated_generations=7", "key 'ga.integrated_generations': 7 is read only by the integrated stage"},
-      {"caretaker.first_step=2", "key 'caretaker.first_step': 2 is read only by the integrated stage"},
-      {"integrated.steps=30", "key 'integrated.steps': 30 is read only by the integrated stage"},
+      {"caretaker.first_step=2", "key 'caretaker.first_step': 2 is read only by the integrated "
+                                 "stage and the integration and generalisation tests"},
+      {"integrated.steps=30", "key 'integrated.steps': 30 is read only by the integrated stage "
+                              "and the integration and robustness tests"},
       {"prediction.window=10", "key 'prediction.window': 10 is read only by the integrated stage"},
-      {"network.gamma_b=7", "key 'network.gamma_b': 7 is read only by the integrated stage"},
+      {"network.gamma_b=7", "key 'network.gamma_b': 7 is read only by the integrated stage and "
+                            "the integration, robustness and generalisation tests"},
   };
   for (size_t i = 0; i < sizeof integrated / sizeof integrated[0]; i++) {
     st_config_default(&c);
@@ -349,8 +370,9 @@ static void test_config_stage_keys(void) {
   CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "dynamics.gravity=5", err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_ERR_ARG);
   ST_ASSERT_CONTAINS(err, "key 'dynamics.gravity': 5 is read only by the main-prim and integrated "
-                          "stages, which this run (simple-prim) does not have: simple-prim runs in "
-                          "kinematic mode (expected the default, 9.81)");
+                          "stages and the integration, robustness and generalisation tests, which "
+                          "this run (simple-prim) does not have: simple-prim runs in kinematic mode "
+                          "(expected the default, 9.81)");
   CU_ASSERT_EQUAL(st_config_check_stages(&c, S | M, err, sizeof err), ST_OK);
   st_config_default(&c);
   CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "stage.simple_steps=50", err, sizeof err), ST_OK);
@@ -364,7 +386,7 @@ static void test_config_stage_keys(void) {
       {"ga.success_genotypes=2", "key 'ga.success_genotypes': 2 is read only by the simple-prim and main-prim stages"},
       {"ga.mutation_rate=0.01", "key 'ga.mutation_rate': 0.01 is read only by the simple-prim and main-prim stages"},
       {"stage.init_population=x.genome", "key 'stage.init_population': x.genome is read only by the "
-                                         "simple-prim and main-prim stages"},
+                                         "simple-prim and main-prim stages and the integration test"},
       {"fitness.fp_min=0.01", "key 'fitness.fp_min': 0.01 is read only by the simple-prim and main-prim stages"},
       {"postures.grasp_partial_thumb_flex=0.1", "key 'postures.grasp_partial_thumb_flex': 0.1 is read "
                                                 "only by the simple-prim and main-prim stages, which "
@@ -399,6 +421,105 @@ static void test_config_stage_keys(void) {
   CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_OK);
 }
 
+/* the post-evaluation tests are readers like the stages: their [posteval] keys are refused by
+ * evolution runs and by the other tests, a key no test reads is refused by a test with the
+ * post-evaluations' reason, and st_config_check_changes judges the --set options against the
+ * config file (a run's config file may set keys of its own stages) */
+static void test_config_posteval_keys(void) {
+  stConfig c, file;
+  char err[1024];
+  const unsigned PI = ST_CONFIG_INTEGRATION_TEST, PR = ST_CONFIG_ROBUSTNESS_TEST;
+  const unsigned PG = ST_CONFIG_GENERALISATION_TEST;
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(c.posteval_integration_top, 10);
+  CU_ASSERT_EQUAL(c.posteval_integration_trials, 40);
+  CU_ASSERT_EQUAL(c.posteval_robustness_trials, 40);
+  CU_ASSERT_EQUAL(c.posteval_generalisation_cells, 7);
+  CU_ASSERT_DOUBLE_EQUAL(c.posteval_generalisation_cell_size, 0.05, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.posteval_generalisation_offset, 0.005, 0.0);
+  CU_ASSERT_EQUAL(c.posteval_generalisation_repetitions, 10);
+  CU_ASSERT_EQUAL(c.posteval_generalisation_steps, 300);
+  CU_ASSERT_DOUBLE_EQUAL(c.posteval_generalisation_target_x, 0.25, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.posteval_generalisation_target_y, 0.0, 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(c.posteval_generalisation_target_z, 0.17, 0.0);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "posteval.generalisation_cells=3", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, ST_CONFIG_INTEGRATED, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'posteval.generalisation_cells': 3 is read only by the "
+                          "generalisation test, which this run (integrated) does not have: a "
+                          "post-evaluation reads it, no evolution stage does (expected the default, 7)");
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, PG, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, PR, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "which this run (robustness test) does not have: it belongs to the "
+                          "generalisation test (expected the default, 7)");
+  /* keys the evolution stages read and no test does, with the tests' reasons; keys tests read */
+  const struct {
+    const char *set;
+    unsigned stages;
+    const char *msg;
+  } refused[] = {
+      {"ga.population=50", PR, "key 'ga.population': 50 is read only by the simple-prim, "
+                               "main-prim and integrated stages, which this run (robustness "
+                               "test) does not have: a post-evaluation runs no genetic algorithm"},
+      {"fitness.fail_penalty=2", PI, "a post-evaluation records success and the step the target "
+                                     "was reached, no fitness"},
+      {"scene.target_offset=0.01", PG, "the generalisation test's target has no offset"},
+      {"integrated.steps=60", PG, "the generalisation test's trials last posteval.generalisation_steps"},
+      {"caretaker.grasp_touches=2", PR, "only the integration test and the generalisation "
+                                        "test's caretaker variant hear the caretaker"},
+      {"stage.primitives=grasp", PI, "a post-evaluation runs integrated trials"},
+  }, read[] = {
+      {"integrated.steps=60", PI, ""}, {"integrated.steps=60", PR, ""},
+      {"caretaker.grasp_touches=2", PG, ""}, {"integrated.words_odd=none", PR, ""},
+      {"dynamics.gravity=5", PR, ""}, {"network.gamma_a=2", PG, ""},
+      {"scene.target_radius=0.05", PG, ""}, {"posteval.integration_top=2", PI, ""},
+  };
+  for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+    st_config_default(&c);
+    CU_ASSERT_EQUAL_FATAL(st_config_set(&c, refused[i].set, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, refused[i].stages, err, sizeof err), ST_ERR_ARG);
+    ST_ASSERT_CONTAINS(err, refused[i].msg);
+  }
+  /* ... and keys a test reads */
+  for (size_t i = 0; i < sizeof read / sizeof read[0]; i++) {
+    st_config_default(&c);
+    CU_ASSERT_EQUAL_FATAL(st_config_set(&c, read[i].set, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(st_config_check_stages(&c, read[i].stages, err, sizeof err), ST_OK);
+  }
+  /* changes against a config file: what the file sets for its own run is not an override */
+  st_config_default(&file);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&file, "ga.population=50", err, sizeof err), ST_OK);
+  c = file;
+  CU_ASSERT_EQUAL(st_config_check_changes(&c, &file, "the config file's value", PR, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "posteval.robustness_trials=8", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_changes(&c, &file, "the config file's value", PR, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_changes(&c, &file, "the config file's value", PI, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'posteval.robustness_trials': 8 is read only by the robustness test, "
+                          "which this run (integration test) does not have: it belongs to the "
+                          "robustness test (expected the config file's value, 40)");
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&c, "ga.population=20", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_changes(&c, &file, "the config file's value", PR, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "key 'ga.population': 20 is read only by the simple-prim, main-prim and "
+                          "integrated stages, which this run (robustness test) does not have");
+  ST_ASSERT_CONTAINS(err, "(expected the config file's value, 50)");
+  /* the run's stages and a test together */
+  CU_ASSERT_EQUAL(st_config_check_stages(&file, ST_CONFIG_INTEGRATED | PR, err, sizeof err), ST_OK);
+  /* the key reference names the readers */
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&buf, &len);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(f);
+  st_config_help(f);
+  fclose(f);
+  ST_ASSERT_CONTAINS(buf, "posteval.generalisation_cells (int, default 7; an integer in [1, 1000]); "
+                          "read by the generalisation test only");
+  ST_ASSERT_CONTAINS(buf, "caretaker.first_step (int, default 1; an integer in [0, 100000]); read by "
+                          "the integrated stage and the integration and generalisation tests only");
+  ST_ASSERT_CONTAINS(buf, "stage.simple_steps (int, default 60; an integer in [1, 100000]); read by "
+                          "the simple-prim stage only");
+  CU_ASSERT_PTR_NULL(strstr(buf, "fitness.reach_height (real, default 0.095; a number in [0, 1]); read"));
+  free(buf);
+}
+
 /* ranges live in the key table: code that builds its definitions checks them there */
 static void test_config_check_number(void) {
   char err[256];
@@ -423,5 +544,6 @@ void st_suite_config(void) {
   ST_ADD_TEST(test_config_set_errors);
   ST_ADD_TEST(test_config_table);
   ST_ADD_TEST(test_config_stage_keys);
+  ST_ADD_TEST(test_config_posteval_keys);
   ST_ADD_TEST(test_config_check_number);
 }

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT
- * Dynamic world (lib/dynworld.c): the physics properties of issue 4 item 6 and SPEC §3 / §8,
+ * Dynamic world (lib/world/dynworld.c): the physics properties of issue 4 item 6 and SPEC §3 / §8,
  * determinism across thread counts and across reset, and robustness under fuzzed commands.
  * Reference values are closed-form (free fall of ODE's semi-implicit Euler, the servo law)
  * or geometric. */
@@ -472,7 +472,7 @@ static int run_threads(const char *const *set, int threads, detResult *res) {
 
 /* the same trials on 1 and 2 threads (each its own world; on 2 threads the trials land on
  * either world, interleaved) give bit-identical final states, with both solvers: quickstep
- * shuffles its constraints with the world's own generator (lib/ode_rand.c) */
+ * shuffles its constraints with the world's own generator (lib/world/ode_rand.c) */
 static void test_determinism_threads(void) {
   CU_ASSERT_PTR_NOT_NULL_FATAL(robot());
   static const char *const quick[] = {"dynamics.solver=quickstep", NULL};

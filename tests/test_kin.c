@@ -126,7 +126,7 @@ static void test_world_saturating(void) {
   st_world_destroy(w);
 }
 
-/* lib/world.c: every step function of a kinematic world is the kinematic step, and the
+/* lib/world/world.c: every step function of a kinematic world is the kinematic step, and the
  * dynamic-mode queries give the answers world.h states for a kinematic world */
 static void test_world_kinematic_dispatch(void) {
   const stRobot *r = robot();

@@ -165,8 +165,19 @@ extern "C" {
   REAL(dynamics, fudge_factor, 0.001, 0.0, 1.0, "ODE joint fudge factor: fraction of the motor torque applied explicitly when a powered joint leaves a stop (1 kicks 10 g phalanges)") \
   STR(dynamics, kinematic_joints, "torso_pitch,torso_yaw,l_shoulder_pitch,l_shoulder_roll,l_shoulder_yaw", "first joints of the chain that follow the servo law exactly in dynamic mode, their links kinematic bodies (PROTOCOL, Dynamic mode); empty: all bounded-torque motors") \
   BOOL(dynamics, free_motion, 1, "1: while no robot part can reach the table or the object within a sub-step, the robot moves kinematically (its servos cannot saturate) and ODE steps the object alone") \
-  REAL(dynamics, contact_margin, 0.03, 0.0, 1.0, "free motion ends when a robot part comes this close to the table or the object, m (>= the distance a part moves in one sub-step)")
-  /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */
+  REAL(dynamics, contact_margin, 0.03, 0.0, 1.0, "free motion ends when a robot part comes this close to the table or the object, m (>= the distance a part moves in one sub-step)") \
+  /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */ \
+  INT(posteval, integration_top, 10, 1, 100000, "integration test: genotypes taken from the top of each primitive run's population (thesis 2.10.1: the top 10)") \
+  INT(posteval, integration_trials, 40, 1, 100000, "integration test: caretaker-guided trials per genotype; trial i has type k = i mod 4: reach posture k, object position k, target k mod 2, fresh offsets (thesis 2.10.1)") \
+  INT(posteval, robustness_trials, 40, 1, 100000, "robustness test: autonomous trials per individual, types as the integration test's (thesis 2.10.2)") \
+  INT(posteval, generalisation_cells, 7, 1, 1000, "generalisation test: cells of the grid along x and along y (thesis 2.10.3: 7 x 7), centred on scene.object_center_x/y") \
+  REAL(posteval, generalisation_cell_size, 0.05, 0.001, 1.0, "generalisation test: side of a cell, m (7 x 5 cm = 35 cm)") \
+  REAL(posteval, generalisation_offset, 0.005, 0.0, 0.5, "generalisation test: uniform offset on x and y of the object around its cell centre, m (+-0.5 cm)") \
+  INT(posteval, generalisation_repetitions, 10, 1, 100000, "generalisation test: trials of each cell with each reach posture (thesis 2.10.3: 10)") \
+  INT(posteval, generalisation_steps, 300, 1, 100000, "generalisation test: trial length, control steps (15 s)") \
+  REAL(posteval, generalisation_target_x, 0.25, -2.0, 2.0, "generalisation test: target x, m, the same in every trial (no offset), between T0 and T1") \
+  REAL(posteval, generalisation_target_y, 0.0, -2.0, 2.0, "generalisation test: target y, m (0: between T0 and T1)") \
+  REAL(posteval, generalisation_target_z, 0.17, -2.0, 2.0, "generalisation test: target z, m (25 cm above the table)")
 
 /* The configuration: one field per key, named section_key. */
 #define ST__CFG_INT(s, k, d, lo, hi, h) int s##_##k;
@@ -261,14 +272,19 @@ stStatus st_config_check_number(const char *section, const char *name, double va
                                 size_t errsz);
 
 /* ---- Which stages read which keys ----
- * Most keys are read by every stage. Those that only some stages read are listed in lib/config.c
+ * Most keys are read by every stage. Those that only some stages read are listed in lib/core/config.c
  * (stage_keys[]) with the stages that read them; an evolution run refuses a value other than
  * the default for a key none of its stages reads (a key acts or is refused, never silently
- * ignored). A stage that starts reading a key adds its bit to the key's row. */
+ * ignored). A stage that starts reading a key adds its bit to the key's row. The three
+ * post-evaluation tests (thesis 2.10, selftalk/posteval.h) are readers like the stages. */
 #define ST_CONFIG_SIMPLE_PRIM 1u /* the simple-prim stage (kinematic) */
 #define ST_CONFIG_MAIN_PRIM 2u   /* the main-prim stage (dynamic) */
 #define ST_CONFIG_INTEGRATED 4u  /* the integrated stage (thesis 2.9) */
-#define ST_CONFIG_ALL_STAGES 7u
+#define ST_CONFIG_INTEGRATION_TEST 8u    /* post-evaluation: the integration test (2.10.1) */
+#define ST_CONFIG_ROBUSTNESS_TEST 16u    /* post-evaluation: the robustness test (2.10.2) */
+#define ST_CONFIG_GENERALISATION_TEST 32u /* post-evaluation: the generalisation test (2.10.3) */
+#define ST_CONFIG_POSTEVAL 56u           /* the three tests */
+#define ST_CONFIG_ALL_STAGES 63u
 
 /* The stages (ST_CONFIG_* bits) that read key i; ST_CONFIG_ALL_STAGES for most keys. */
 unsigned st_config_key_stages(int i);
@@ -279,6 +295,12 @@ unsigned st_config_run_stages(const stConfig *cfg);
 /* Refuses (ST_ERR_ARG, naming the key, its value, the stages that read it and why) a key whose
  * value is not its default when none of `stages` reads it. */
 stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err, size_t errsz);
+
+/* The same against another configuration: refuses a key whose value differs from base's when
+ * none of `stages` reads it; base_name says what base is in the message ("expected BASE_NAME,
+ * VALUE"). A post-evaluation checks its --set options against the config file this way. */
+stStatus st_config_check_changes(const stConfig *cfg, const stConfig *base, const char *base_name,
+                                 unsigned stages, char *err, size_t errsz);
 
 #ifdef __cplusplus
 }

@@ -93,6 +93,9 @@ int st_model_body(const stModel *model, const char *link_name);
 /* Body index whose parent joint has this name, or -1. */
 int st_model_joint(const stModel *model, const char *joint_name);
 
+/* "sphere", "box", "cylinder", "mesh" (stGeomType); "?" for another value. */
+const char *st_geom_type_name(int type);
+
 #ifdef __cplusplus
 }
 #endif

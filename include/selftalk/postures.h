@@ -9,7 +9,7 @@
  * (contact checks) and frees it before returning: call these at run or trial set-up, not in
  * a control loop (st_postures_all computes the 16 once).
  *
- * How each is built (numbers in lib/postures.c, top):
+ * How each is built (numbers in lib/task/postures.c, top):
  *   reach  k: the palm centre is placed (position only) at a fixed offset from the centre of
  *             the four object positions, from four different start postures; torso yaw and
  *             pitch at 0 degrees, thumb and fingers fully extended. Palm >= 0.15 m from every

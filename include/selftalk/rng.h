@@ -24,6 +24,10 @@ typedef enum stRngStream {
   ST_RNG_INTEGRATED = 5, /* integrated-stage trial offsets: (generation, trial); common to all */
   ST_RNG_SOLVER = 6, /* the dynamic solver's generator of an integrated or scripted episode:
                         (generation, individual, trial) */
+  ST_RNG_POSTEVAL = 7, /* post-evaluation trial offsets: (test, 0, trial); common to every
+                          individual and condition (selftalk/posteval.h) */
+  ST_RNG_POSTEVAL_SOLVER = 8, /* the dynamic solver's generator of a post-evaluation trial:
+                                 (test, 0, trial) */
   ST_RNG_USER = 100  /* first value free for applications */
 } stRngStream;
 

@@ -47,7 +47,8 @@ typedef struct stScene {
   double obj_radius, obj_mass, base_radius, base_height;
   double obj_rest_z;               /* sphere centre resting on the table */
   double obj_pos[ST_NOBJPOS][3];   /* resting object positions (sphere centres) */
-  double target[3][3];             /* T0, T1, generalisation target */
+  double target[3][3];             /* T0, T1, the generalisation test's target (keys
+                                      posteval.generalisation_target_*) */
   double obj_offset, target_offset, target_radius;
   stPostureDef posture;            /* initial postures (SPEC §8) */
 } stScene;

@@ -13,7 +13,7 @@
  * down. Under SPEC §3's law (velocity alpha (y - qhat) deg/s, clamped) a command
  * y = qhat + g (q_goal - qhat) / (1 - exp(-alpha dt / range)) closes a fraction g of the error
  * per step; thumb and fingers are commanded beyond their contact flexion, so that their
- * motors push with their bounded torque. In short (numbers and reasons: lib/scripted.c and
+ * motors push with their bounded torque. In short (numbers and reasons: lib/task/scripted.c and
  * docs/PROTOCOL.md, "Scripted controller"):
  *   reach: palm centre to the reach point, palm down, hand open, thumb beside the palm;
  *   open:  the same target; the palm rises slowly while the hand is still closed;

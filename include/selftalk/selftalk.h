@@ -13,6 +13,7 @@
 #include "selftalk/net.h"
 #include "selftalk/prediction.h"
 #include "selftalk/rng.h"
+#include "selftalk/stats.h"
 /* the simulator side (links ODE, urdfdom, assimp): robot, world, sensors, stages */
 #include "selftalk/caretaker.h"
 #include "selftalk/episode.h"
@@ -21,6 +22,7 @@
 #include "selftalk/ik.h"
 #include "selftalk/integrated.h"
 #include "selftalk/model.h"
+#include "selftalk/posteval.h"
 #include "selftalk/postures.h"
 #include "selftalk/robot.h"
 #include "selftalk/scene.h"

@@ -40,7 +40,7 @@ typedef struct stWorld {
   long step;              /* control steps since reset */
   int reference_contacts; /* 1: test every geometry with ODE's narrow phase, no culling or
                              shortcuts (slow; for validation and as a benchmark baseline) */
-  void *internal_;        /* the kinematic or dynamic backend's state (lib/world_backend.h) */
+  void *internal_;        /* the kinematic or dynamic backend's state (lib/world/world_backend.h) */
   int dynamic;            /* 1 for a world of st_world_create_dynamic (set at creation) */
 } stWorld;
 
@@ -69,7 +69,43 @@ void st_world_update(stWorld *w);
 /* World position of a point given in a body's frame. */
 void st_world_point(const stWorld *w, int body, const double local[3], double out[3]);
 
-/* ---- dynamic mode (thesis §2.1, SPEC §3; lib/dynworld.c, docs/PROTOCOL.md "Dynamic mode") --
+/* ---- shapes: what collides, for pictures (docs/PROTOCOL.md, "Robot pictures") ------------- */
+
+typedef enum stShapeKind {
+  ST_SHAPE_ROBOT = 0, /* a collision geometry of a robot link */
+  ST_SHAPE_BALL,      /* the object: its sphere, and its flattened base (a vertical cylinder) */
+  ST_SHAPE_TABLE,     /* the table-top box */
+  ST_SHAPE_TARGET,    /* the target: a sphere of the success radius (scene.target_radius) */
+  ST_SHAPE_KIND_COUNT
+} stShapeKind;
+
+/* One shape in the world frame. Every type fits the box of full extents size[0..2] along its
+ * own axes (the columns of R), centred at pos: a sphere has 2r, 2r, 2r; a cylinder 2r, 2r and
+ * its length along its own z axis; a mesh (ST_GEOM_MESH) is given as the bounding box of its
+ * vertices in its own frame, pos that box's centre. */
+typedef struct stShape {
+  stShapeKind kind;
+  stGeomType type;
+  int body;           /* ST_SHAPE_ROBOT: the model body (link) it belongs to; else -1 */
+  int geom;           /* ST_SHAPE_ROBOT: the model geometry index; else -1 */
+  const char *owner;  /* the link's name, or "ball", "table", "target" (static or the model's) */
+  double size[3];     /* full extents along the shape's axes, m */
+  double pos[3];      /* centre, world frame */
+  double R[9];        /* world <- shape, row-major */
+} stShape;
+
+/* The shapes of the world's current state: every collision geometry of the robot's model (at
+ * the poses R, p of the world: forward kinematics of the joint readings), then the ball's
+ * sphere and base (at obj, turned as the object is: in dynamic mode the object body's
+ * rotation), the table and the target. Fills out[0 .. min(n, max) - 1] and returns n, the
+ * number of shapes (constant for a world); nullable out when max is 0. Reads the state only:
+ * calling it never changes a simulation. */
+int st_world_shapes(const stWorld *w, stShape *out, int max);
+
+/* "robot", "ball", "table", "target"; "?" for another value. */
+const char *st_shape_kind_name(int kind);
+
+/* ---- dynamic mode (thesis §2.1, SPEC §3; lib/world/dynworld.c, docs/PROTOCOL.md "Dynamic mode") --
  * An ODE world per stWorld: the robot's links as rigid bodies (massless frames and fixed-joint
  * children folded into their parent body; the root fixed to the world), hinge joints with
  * stops and velocity motors of bounded torque, the table (static box), the object (sphere with

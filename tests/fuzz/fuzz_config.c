@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT
- * Fuzz target: the config reader (st_config_load's parser, lib/readers.h). Property: a text
+ * Fuzz target: the config reader (st_config_load's parser, lib/core/readers.h). Property: a text
  * it accepts is written back by st_config_write and reads back to the same configuration. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdint.h>
@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "readers.h"
+#include "core/readers.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   stConfig cfg, back;

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT
- * Fuzz target: the genome reader (st_genome_set_read's parser, lib/readers.h). Property: the
+ * Fuzz target: the genome reader (st_genome_set_read's parser, lib/core/readers.h). Property: the
  * genotypes of a text it accepts are written back by st_genome_write and read back the same. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "readers.h"
+#include "core/readers.h"
 
 /* the first byte picks the gene count asked for: any, or one architecture's */
 static int expect_of(const uint8_t *data, size_t size) {

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: MIT
- * Fuzz target: the URDF importer (st_model_load_urdf's, lib/readers.h; meshes are looked for
- * in a directory that does not exist). Property: a model it accepts holds only what the world
- * can simulate (docs/PROTOCOL.md, "Robot model": the limits checked at load). */
+ * Fuzz target: the URDF importer (st__model_parse_urdf, lib/model/model_internal.h; meshes are
+ * looked for in a directory that does not exist). Property: a model it accepts holds only what
+ * the world can simulate (docs/PROTOCOL.md, "Robot model": the limits checked at load). */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "readers.h"
+#include "model/model_internal.h"
 
 static void require(int ok, const char *what, int i) {
   if (ok) return;

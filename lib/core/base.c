@@ -1,0 +1,218 @@
+/* SPDX-License-Identifier: MIT */
+#define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/internal.h"
+#include "selftalk/base.h"
+#include "selftalk/io.h"
+
+const char *st_status_str(stStatus status) {
+  static const char *names[ST_STATUS_COUNT] = {
+      "ok", "i/o error", "parse error", "value out of range", "invalid argument",
+      "out of memory", "robot model error", "simulation unstable"};
+  if ((int)status < 0 || status >= ST_STATUS_COUNT) return "unknown status";
+  return names[status];
+}
+
+int st__errf(char *err, size_t errsz, const char *fmt, ...) {
+  if (err && errsz) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errsz, fmt, ap);
+    va_end(ap);
+  }
+  return 0;
+}
+
+void st__err_key(char *err, size_t errsz, const char *key) {
+  if (!err || !errsz) return;
+  const size_t n = strlen(err) + 1;
+  char *msg = malloc(n);
+  if (!msg) return; /* the message without its key is still a message */
+  memcpy(msg, err, n);
+  snprintf(err, errsz, "key '%s': %s", key, msg);
+  free(msg);
+}
+
+int st__parse_double(const char *s, double *out) {
+  char *end;
+  while (isspace((unsigned char)*s)) s++;
+  if (!*s) return -1;
+  errno = 0;
+  double v = strtod(s, &end);
+  while (isspace((unsigned char)*end)) end++;
+  if (*end || errno == ERANGE || !isfinite(v)) return -1;
+  *out = v;
+  return 0;
+}
+
+int st__parse_int(const char *s, int *out) {
+  char *end;
+  while (isspace((unsigned char)*s)) s++;
+  if (!*s) return -1;
+  errno = 0;
+  long v = strtol(s, &end, 10);
+  while (isspace((unsigned char)*end)) end++;
+  if (*end || errno == ERANGE || v < INT_MIN || v > INT_MAX) return -1;
+  *out = (int)v;
+  return 0;
+}
+
+size_t st__strlcpy(char *dst, const char *src, size_t n) {
+  size_t len = strlen(src);
+  if (n) {
+    size_t c = len < n - 1 ? len : n - 1;
+    memcpy(dst, src, c);
+    dst[c] = 0;
+  }
+  return len;
+}
+
+/* ---- bounded input ---- */
+
+/* "64 MiB" for whole mebibytes, else "N bytes" */
+static void size_text(size_t n, char *buf, size_t bufsz) {
+  if (n && n % ((size_t)1 << 20) == 0) snprintf(buf, bufsz, "%zu MiB", n >> 20);
+  else snprintf(buf, bufsz, "%zu bytes", n);
+}
+
+/* first buffer size: the file's size when it has one (a regular file), plus the end check */
+static size_t first_capacity(FILE *f, size_t max) {
+  struct stat sb;
+  size_t cap = 65536;
+  if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size >= 0 &&
+      (unsigned long long)sb.st_size < max)
+    cap = (size_t)sb.st_size + 2;
+  return cap < max + 2 ? cap : max + 2;
+}
+
+/* reads f into *buf until EOF or until it holds more than max bytes (too large); returns the
+ * bytes read, or (size_t)-1 on a read error or when out of memory (*enomem) */
+static size_t read_bounded(FILE *f, size_t max, char **buf, int *enomem) {
+  size_t cap = first_capacity(f, max), n = 0; /* cap <= max + 2: max + 1 bytes and a NUL */
+  if (!(*buf = malloc(cap))) return *enomem = 1, (size_t)-1;
+  for (;;) {
+    if (n + 1 == cap) { /* full (one byte kept for the NUL) */
+      if (n > max) return n;
+      size_t nc = cap <= (max + 2) / 2 ? 2 * cap : max + 2;
+      char *b = realloc(*buf, nc);
+      if (!b) return *enomem = 1, (size_t)-1;
+      *buf = b;
+      cap = nc;
+    }
+    size_t got = fread(*buf + n, 1, cap - 1 - n, f);
+    n += got;
+    if (got == 0) return ferror(f) ? (size_t)-1 : n;
+  }
+}
+
+stStatus st_file_read(const char *path, size_t max, char **data, size_t *len, char *err,
+                      size_t errsz) {
+  *data = NULL;
+  *len = 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    st__errf(err, errsz, "%s: cannot open: %s", path, strerror(errno));
+    return ST_ERR_IO;
+  }
+  char *buf = NULL;
+  int enomem = 0;
+  errno = 0;
+  size_t n = read_bounded(f, max, &buf, &enomem);
+  int e = errno;
+  fclose(f);
+  stStatus st = ST_OK;
+  char lim[32];
+  size_text(max, lim, sizeof lim);
+  if (enomem) {
+    st__errf(err, errsz, "%s: out of memory", path);
+    st = ST_ERR_NOMEM;
+  } else if (n == (size_t)-1) {
+    st__errf(err, errsz, "%s: cannot read: %s", path, strerror(e ? e : EIO));
+    st = ST_ERR_IO;
+  } else if (n > max) {
+    st__errf(err, errsz, "%s: larger than %s (expected an input file of at most %zu bytes)", path,
+             lim, max);
+    st = ST_ERR_RANGE;
+  }
+  if (st) {
+    free(buf);
+    return st;
+  }
+  buf[n] = 0;
+  *data = buf;
+  *len = n;
+  return ST_OK;
+}
+
+stStatus st_text_check(const char *name, const char *text, size_t len, char *err, size_t errsz) {
+  const char *nul = memchr(text, 0, len);
+  if (!nul) return ST_OK;
+  size_t line = 1, col = 1;
+  for (const char *p = text; p < nul; p++) {
+    col++;
+    if (*p == '\n') line++, col = 1;
+  }
+  st__errf(err, errsz, "%s:%zu: NUL byte at column %zu (expected a text file)", name, line, col);
+  return ST_ERR_PARSE;
+}
+
+stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t errsz) {
+  memset(af, 0, sizeof *af);
+  if (strlen(path) + 32 >= sizeof af->tmp) {
+    st__errf(err, errsz, "%s: path too long", path);
+    return ST_ERR_IO;
+  }
+  st__strlcpy(af->path, path, sizeof af->path);
+  snprintf(af->tmp, sizeof af->tmp, "%s.tmp.%ld", path, (long)getpid());
+  af->f = fopen(af->tmp, "w");
+  if (!af->f) {
+    st__errf(err, errsz, "%s: cannot write: %s", af->tmp, strerror(errno));
+    return ST_ERR_IO;
+  }
+  return ST_OK;
+}
+
+/* the step of a commit that failed, for the message */
+enum { COMMIT_OK, COMMIT_WRITE, COMMIT_SYNC, COMMIT_RENAME };
+
+static int commit_steps(stAtomicFile *af, int *e) {
+  int step = COMMIT_OK;
+  errno = 0;
+  if (ferror(af->f) || fflush(af->f) != 0) step = COMMIT_WRITE;
+  else if (fsync(fileno(af->f)) != 0) step = COMMIT_SYNC;
+  *e = errno;
+  if (fclose(af->f) != 0 && !step) step = COMMIT_WRITE, *e = errno;
+  af->f = NULL;
+  if (!step && rename(af->tmp, af->path) != 0) step = COMMIT_RENAME, *e = errno;
+  if (step && !*e) *e = EIO; /* ferror without errno */
+  return step;
+}
+
+stStatus st_atomic_commit(stAtomicFile *af, char *err, size_t errsz) {
+  int e = 0;
+  const int step = commit_steps(af, &e);
+  if (!step) return ST_OK;
+  remove(af->tmp);
+  if (step == COMMIT_RENAME)
+    st__errf(err, errsz, "%s: cannot write: renaming %s over it: %s", af->path, af->tmp, strerror(e));
+  else
+    st__errf(err, errsz, "%s: cannot write: %s %s: %s", af->path,
+             step == COMMIT_SYNC ? "syncing" : "writing", af->tmp, strerror(e));
+  return ST_ERR_IO;
+}
+
+void st_atomic_abort(stAtomicFile *af) {
+  if (af->f) fclose(af->f);
+  af->f = NULL;
+  if (af->tmp[0]) remove(af->tmp);
+}

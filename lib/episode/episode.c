@@ -1,0 +1,231 @@
+/* SPDX-License-Identifier: MIT
+ * The one episode loop (selftalk/episode.h). */
+#include "selftalk/episode.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/internal.h"
+#include "selftalk/caretaker.h"
+
+/* ---- protocol and workspace ---- */
+
+/* builds (and frees) one dynamic world: its settings are refused now, naming the key, not at
+ * the first dynamic trial, which may come after a whole simple-prim stage */
+static stStatus check_dynamics(const stProtocol *p, char *err, size_t errsz) {
+  stDynDef def;
+  st_dyn_def_from_config(&p->cfg, &def);
+  stWorld *w = NULL;
+  const stStatus st = st_world_create_dynamic(p->robot, &p->scene, &def, &w, err, errsz);
+  if (w) st_world_destroy(w);
+  return st;
+}
+
+stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, size_t errsz) {
+  *out = NULL;
+  stStatus st = st_config_validate(cfg, err, errsz);
+  if (st) return st;
+  stProtocol *p = calloc(1, sizeof *p);
+  if (!p) return ST_ERR_NOMEM;
+  p->cfg = *cfg;
+  if ((st = st_robot_create(cfg, &p->robot, err, errsz))) {
+    free(p);
+    return st;
+  }
+  st_scene_from_config(cfg, &p->scene);
+  st_sensor_def_from_config(cfg, &p->sensor);
+  st_fitness_def_from_config(cfg, &p->fitness);
+  p->net = st_net_def_from_config(cfg);
+  p->primitives = st_config_primitive_mask(cfg);
+  if ((st = st_postures_all(p->robot, &p->scene, p->posture, err, errsz)) ||
+      (st = check_dynamics(p, err, errsz))) {
+    st_protocol_destroy(p);
+    return st;
+  }
+  *out = p;
+  return ST_OK;
+}
+
+void st_protocol_destroy(stProtocol *p) {
+  if (!p) return;
+  st_robot_destroy(p->robot);
+  free(p);
+}
+
+void st_workspace_free(stWorkspace *ws) {
+  if (!ws) return;
+  st_world_destroy(ws->kin);
+  st_world_destroy(ws->dyn);
+  ws->kin = ws->dyn = NULL;
+}
+
+const char *st_word_source_name(stWordSource s) {
+  static const char *const names[ST_WORDS_COUNT] = {"none", "fixed", "caretaker", "selftalk"};
+  return (int)s >= 0 && s < ST_WORDS_COUNT ? names[s] : "?";
+}
+
+int st_episode_label(const double *ling4) {
+  int best = 0;
+  for (int m = 1; m < ST_NET_NLING; m++)
+    if (ling4[m] > ling4[best]) best = m;
+  return best;
+}
+
+/* ---- the network as a controller ---- */
+
+static void net_reset(void *self, const stEpisodeSpec *e) {
+  (void)e;
+  stNetController *c = self;
+  st_net_reset(c->net, &c->state);
+}
+
+static void net_act(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
+                    double *out) {
+  (void)w;
+  (void)q;
+  stNetController *c = self;
+  st_net_step(c->net, &c->state, in, out);
+  for (int i = 0; i < c->nforce; i++)
+    if (step >= c->force[i].from_step) out[c->force[i].output] = c->force[i].value;
+}
+
+stController st_net_controller(stNetController *c, const stNetParams *net, const stForce *force,
+                               int nforce) {
+  memset(c, 0, sizeof *c);
+  c->net = net;
+  c->force = force;
+  c->nforce = force ? nforce : 0;
+  stController ctl = {net_reset, net_act, st_net_ninputs(net->arch), c,
+                      st_net_noutputs(net->arch), net->arch == ST_ARCH_A};
+  return ctl;
+}
+
+stStatus st_force_check(const stForce *force, int nforce, char *err, size_t errsz) {
+  if (nforce < 0 || (nforce > 0 && !force))
+    return st__errf(err, errsz, "forced outputs: count %d (expected >= 0, and a list when > 0)",
+                    nforce), ST_ERR_ARG;
+  for (int i = 0; i < nforce; i++) {
+    const stForce *f = &force[i];
+    if (f->output < 0 || f->output > ST_NET_OUT_FOCUS)
+      return st__errf(err, errsz, "forced output %d (expected 0..%d: the 12 DOF, then focus)",
+                      f->output, ST_NET_OUT_FOCUS), ST_ERR_RANGE;
+    if (!(f->value >= 0.0 && f->value <= 1.0))
+      return st__errf(err, errsz, "forced output %d: value %g (expected 0..1)", f->output,
+                      f->value), ST_ERR_RANGE;
+    if (f->from_step < 0)
+      return st__errf(err, errsz, "forced output %d: from step %d (expected >= 0)", f->output,
+                      f->from_step), ST_ERR_RANGE;
+  }
+  return ST_OK;
+}
+
+/* ---- the loop ---- */
+
+/* the world of a mode, created on first use */
+static stStatus episode_world(const stProtocol *p, stWorkspace *ws, int dynamic, stWorld **w,
+                              char *err, size_t errsz) {
+  stStatus st = ST_OK;
+  if (!dynamic) {
+    if (!ws->kin) st = st_world_create(p->robot, &p->scene, &ws->kin, err, errsz);
+    *w = ws->kin;
+  } else {
+    if (!ws->dyn) {
+      stDynDef dd;
+      st_dyn_def_from_config(&p->cfg, &dd);
+      st = st_world_create_dynamic(p->robot, &p->scene, &dd, &ws->dyn, err, errsz);
+    }
+    *w = ws->dyn;
+  }
+  return st;
+}
+
+static stStatus check_episode(const stController *ctl, const stWords *words, char *err,
+                              size_t errsz) {
+  const int nout = ctl->noutputs ? ctl->noutputs : ST_NET_NOUT;
+  if (nout < ST_NET_NOUT || nout > ST_NET_MAX_OUT || ctl->ninputs < ST_NET_NIN ||
+      ctl->ninputs > ST_NET_MAX_IN)
+    return st__errf(err, errsz, "episode: controller with %d inputs, %d outputs (expected %d..%d "
+                    "and %d..%d)", ctl->ninputs, nout, ST_NET_NIN, ST_NET_MAX_IN, ST_NET_NOUT,
+                    ST_NET_MAX_OUT), ST_ERR_ARG;
+  if (words->source == ST_WORDS_SELFTALK && !(ctl->talks && nout >= ST_NET_MAX_OUT))
+    return st__errf(err, errsz, "episode: self talk needs a controller that produces labels "
+                    "(linguistic outputs 13-16: a type A network)"), ST_ERR_ARG;
+  if ((int)words->source < 0 || words->source >= ST_WORDS_COUNT ||
+      (words->source == ST_WORDS_FIXED && (words->word < 0 || words->word >= ST_NPRIM)))
+    return st__errf(err, errsz, "episode: word source %d, word %d (expected a source of "
+                    "stWordSource; a fixed word 0..3)", (int)words->source, words->word), ST_ERR_ARG;
+  return ST_OK;
+}
+
+/* what the robot hears at this step, sensing the state before the action */
+typedef struct hearing {
+  stCaretaker ct;
+  int last_label; /* self talk: the label of the previous step */
+} hearing;
+
+static int heard_word(hearing *h, const stProtocol *p, const stWords *words, int step,
+                      const stQuantities *q, const stWorld *w) {
+  switch (words->source) {
+    case ST_WORDS_FIXED: return words->word;
+    case ST_WORDS_CARETAKER: return st_caretaker_word(&h->ct, &p->fitness, step, q, &w->contacts);
+    case ST_WORDS_SELFTALK: return step == 0 ? -1 : h->last_label;
+    default: return -1;
+  }
+}
+
+/* the state after the action, for the scorer */
+static void observe(const stProtocol *p, const stWorld *w, stTraceStep *s) {
+  s->pen_table = st_penalty_table(w, &p->sensor);
+  s->pen_object = st_penalty_object(w, &p->sensor);
+  s->pen_moving = st_penalty_moving(w, &p->sensor);
+  s->fell = st_world_object_fell(w);
+  s->unstable = st_world_unstable(w);
+  s->S = s->P = 0.0;
+  s->success_now = 0;
+  s->event = -1;
+}
+
+stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
+                        const stController *ctl, const stWords *words, const stScorer *scorer,
+                        stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  stWorld *w = NULL;
+  stStatus st = check_episode(ctl, words, err, errsz);
+  if (!st) st = episode_world(p, ws, e->dynamic, &w, err, errsz);
+  if (st) return st;
+  st_world_set_seed(w, e->seed_key); /* quickstep's shuffling: keyed by the trial, not the thread */
+  st_world_reset(w, e->qhat0, e->obj, e->target);
+  if (ctl->reset) ctl->reset(ctl->self, e);
+  if (scorer->begin) scorer->begin(scorer->self);
+  hearing h;
+  st_caretaker_init(&h.ct, &p->cfg);
+  h.last_label = -1;
+  double in[ST_NET_MAX_IN] = {0}, out[ST_NET_MAX_OUT] = {0}, ling[ST_NET_NLING];
+  stQuantities q;
+  st_quantities(w, &p->sensor, &q);
+  stTraceStep s;
+  memset(&s, 0, sizeof s);
+  s.world = w, s.q = &q, s.in = in, s.out = out, s.source = words->source;
+  s.nout = ctl->noutputs ? ctl->noutputs : ST_NET_NOUT;
+  for (int step = 0; step < e->steps; step++) {
+    if (e->table_off_step >= 0 && step == e->table_off_step) st_world_set_object_table_collision(w, 0);
+    /* hear, sense, think, act */
+    s.step = step;
+    s.word = heard_word(&h, p, words, step, &q, w);
+    st_net_label_input(s.word, words->scale, ling);
+    st_sensor_inputs(w, &p->sensor, &q, s.focus_target, step == 0, ling, words->secondary, in,
+                     ctl->ninputs);
+    ctl->act(ctl->self, w, &q, in, step, out);
+    s.label = ctl->talks ? st_episode_label(out + ST_NET_NOUT) : -1;
+    h.last_label = s.label;
+    s.focus_target = st_focus_is_target(&p->sensor, out[ST_NET_OUT_FOCUS]);
+    st_world_step(w, out);
+    /* score the state the step produced */
+    st_quantities(w, &p->sensor, &q);
+    observe(p, w, &s);
+    s.event = scorer->step(scorer->self, &s);
+    if (trace) trace(ctx, &s);
+    if (s.event >= 0) break;
+  }
+  if (scorer->end) scorer->end(scorer->self, w);
+  return ST_OK;
+}

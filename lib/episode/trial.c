@@ -1,0 +1,216 @@
+/* SPDX-License-Identifier: MIT */
+#include "selftalk/trial.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/internal.h"
+
+void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
+  const stConfig *c = &p->cfg;
+  memset(t, 0, sizeof *t);
+  t->stage = stage;
+  t->index = index;
+  t->primitive = index / ST_NPOSTURE;
+  t->k = index % ST_NPOSTURE;
+  t->target_index = t->k % 2;
+  memcpy(t->qhat0, p->posture[t->primitive][t->k], sizeof t->qhat0);
+  /* offsets: object (reach trials only, thesis 2.5.1) then target (every trial, 2.5.2) */
+  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_TRIAL, (uint64_t)generation, 0, (uint64_t)index);
+  st_scene_object(&p->scene, t->k, t->primitive == ST_PRIM_REACH, &rng, t->obj);
+  st_scene_target(&p->scene, t->target_index, &rng, t->target);
+  if (stage == ST_STAGE_SIMPLE) {
+    t->steps = c->stage_simple_steps;
+    t->table_off_step = -1;
+  } else {
+    const int steps[ST_NPRIM] = {c->stage_main_reach_steps, c->stage_main_open_steps,
+                                 c->stage_main_grasp_steps, c->stage_main_move_steps};
+    t->steps = steps[t->primitive];
+    t->table_off_step = t->primitive == ST_PRIM_GRASP  ? c->stage_grasp_table_off_step
+                        : t->primitive == ST_PRIM_MOVE ? c->stage_move_table_off_step
+                                                       : -1;
+  }
+}
+
+void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_key,
+                      stEpisodeSpec *e, stWords *words) {
+  memset(e, 0, sizeof *e);
+  e->dynamic = t->stage != ST_STAGE_SIMPLE;
+  memcpy(e->qhat0, t->qhat0, sizeof e->qhat0);
+  memcpy(e->obj, t->obj, sizeof e->obj);
+  memcpy(e->target, t->target, sizeof e->target);
+  e->steps = t->steps;
+  e->table_off_step = t->table_off_step;
+  e->seed_key = seed_key;
+  /* the primitive's word every step; primitive stages never give the secondary input */
+  words->source = ST_WORDS_FIXED;
+  words->word = t->primitive;
+  words->scale = p->cfg.network_linguistic_input;
+  words->secondary = 0.0;
+}
+
+/* ---- one trial ---- */
+
+/* the penalties that apply, summed in the order table, object, moving */
+static double masked_penalty(const stTraceStep *s, int mask) {
+  double pen = 0.0;
+  if (mask & ST_PEN_TABLE) pen += s->pen_table;
+  if (mask & ST_PEN_OBJECT) pen += s->pen_object;
+  if (mask & ST_PEN_MOVING) pen += s->pen_moving;
+  return pen;
+}
+
+void st_score_begin(stTrialScore *sc, const stTrialSpec *t) {
+  memset(sc, 0, sizeof *sc);
+  sc->stage = t->stage;
+  sc->primitive = t->primitive;
+  sc->steps = t->steps;
+  sc->table_off_step = t->table_off_step;
+  sc->reached_at = -1;
+  sc->r.success_step = -1;
+}
+
+int st_score_step(stTrialScore *sc, const stFitnessDef *fd, int step, const stQuantities *q,
+                  double y_focus, double threshold, double penalty, int fell, int unstable,
+                  double *S_out, double *P_out) {
+  stTrialResult *r = &sc->r;
+  const double S = st_step_fitness(fd, sc->stage, sc->primitive, q, y_focus, threshold);
+  r->sum_s += S;
+  r->sum_p += penalty;
+  r->steps_run++;
+  sc->lifted = q->lifted;
+  const int now = st_success_now(fd, sc->stage, sc->primitive, q);
+  if (now && r->success_step < 0) r->success_step = step;
+  if (sc->primitive == ST_PRIM_MOVE) sc->was_in_target |= now;
+  else if (now) r->success = 1;
+  if (sc->primitive == ST_PRIM_REACH && now && sc->reached_at < 0) sc->reached_at = step;
+  if (S_out) *S_out = S;
+  if (P_out) *P_out = penalty;
+  if (sc->stage != ST_STAGE_MAIN) return -1; /* simple-prim trials always run their length */
+  int event = -1;
+  if (unstable || fell) {
+    r->unstable = unstable;
+    /* grasp: falling once the table is gone ends the trial without a penalty (2.8.1.2) */
+    event = !unstable && sc->primitive == ST_PRIM_GRASP && sc->table_off_step >= 0 &&
+                    step >= sc->table_off_step
+                ? ST_END_QUIET
+                : ST_END_FAILURE;
+  } else if (sc->primitive == ST_PRIM_REACH && sc->reached_at >= 0 &&
+             step - sc->reached_at > fd->reach_hold_steps) {
+    event = ST_END_SUCCESS; /* reached "more than 20 steps ago" */
+  }
+  if (event >= 0) r->end = (stTrialEnd)event;
+  return event;
+}
+
+void st_score_end(stTrialScore *sc, const stFitnessDef *fd, double obj_z, double table_top_z,
+                  stTrialResult *out) {
+  stTrialResult *r = &sc->r;
+  const long remaining = sc->steps - r->steps_run;
+  if (r->end == ST_END_SUCCESS) r->sum_s += (double)remaining;
+  if (r->end == ST_END_FAILURE) r->sum_p += fd->fail_penalty * (double)remaining;
+  r->steps = sc->steps;
+  const int is_main = sc->stage == ST_STAGE_MAIN;
+  if (r->unstable) r->success = 0;
+  else if (is_main && sc->primitive == ST_PRIM_GRASP)
+    r->success = r->end == ST_END_FULL && obj_z > table_top_z;
+  else if (sc->primitive == ST_PRIM_MOVE)
+    r->success = is_main ? sc->was_in_target && r->end == ST_END_FULL && sc->lifted
+                         : sc->was_in_target;
+  *out = *r;
+}
+
+/* ---- the primitive scorer ---- */
+
+static void prim_begin(void *self) {
+  stPrimScorer *s = self;
+  st_score_begin(&s->sc, s->t);
+}
+
+static int prim_step(void *self, stTraceStep *ts) {
+  stPrimScorer *s = self;
+  const stTrialSpec *t = s->t;
+  const int mask = st_penalty_mask(t->stage, t->primitive, ts->step,
+                                   t->table_off_step >= 0 ? t->table_off_step : t->steps);
+  const int event = st_score_step(&s->sc, &s->p->fitness, ts->step, ts->q, ts->out[ST_NET_OUT_FOCUS],
+                                  s->p->sensor.focus_threshold, masked_penalty(ts, mask), ts->fell,
+                                  ts->unstable, &ts->S, &ts->P);
+  ts->success_now = st_success_now(&s->p->fitness, t->stage, t->primitive, ts->q);
+  return event;
+}
+
+static void prim_end(void *self, const stWorld *w) {
+  stPrimScorer *s = self;
+  st_score_end(&s->sc, &s->p->fitness, w->obj[2], s->p->scene.table_top_z, s->r);
+}
+
+stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
+                        stTrialResult *r) {
+  s->p = p;
+  s->t = t;
+  s->r = r;
+  stScorer sc = {prim_begin, prim_step, prim_end, s};
+  return sc;
+}
+
+stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                           const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                           stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  stEpisodeSpec e;
+  stWords words;
+  st_trial_episode(p, t, seed_key, &e, &words);
+  stPrimScorer ps;
+  const stScorer sc = st_prim_scorer(&ps, p, t, r);
+  return st_episode_run(p, ws, &e, ctl, &words, &sc, trace, ctx, err, errsz);
+}
+
+stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                             const stNetParams *net, const stForce *force, int nforce,
+                             uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
+                             char *err, size_t errsz) {
+  stStatus st = st_force_check(force, nforce, err, errsz);
+  if (st) return st;
+  stNetController c;
+  const stController ctl = st_net_controller(&c, net, force, nforce);
+  return st_trial_run_with(p, ws, t, &ctl, seed_key, r, trace, ctx, err, errsz);
+}
+
+stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                      const stNetParams *net, uint64_t seed_key, stTrialResult *r, stTraceFn trace,
+                      void *ctx, char *err, size_t errsz) {
+  return st_trial_run_forced(p, ws, t, net, NULL, 0, seed_key, r, trace, ctx, err, errsz);
+}
+
+stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
+                           int individual, const stNetParams *net, stEvaluation *e, char *err,
+                           size_t errsz) {
+  memset(e, 0, sizeof *e);
+  double sum_sp[ST_NPRIM] = {0}, bonus[ST_NPRIM] = {0};
+  long n[ST_NPRIM] = {0};
+  for (int i = 0; i < ST_PRIM_TRIALS; i++) {
+    stTrialSpec t;
+    st_trial_spec(p, stage, generation, i, &t);
+    if (!(p->primitives >> t.primitive & 1u)) continue;
+    e->ntrials++;
+    stTrialResult r;
+    uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
+                                (uint64_t)individual, (uint64_t)i).key;
+    stStatus st = st_trial_run(p, ws, &t, net, key, &r, NULL, NULL, err, errsz);
+    if (st) return st;
+    sum_sp[t.primitive] += r.sum_s - r.sum_p;
+    n[t.primitive] += r.steps;
+    bonus[t.primitive] += r.success ? p->fitness.bonus : 0.0;
+    e->success[i] = (uint8_t)r.success;
+    e->successes += r.success;
+    e->unstable += r.unstable;
+  }
+  double fp[ST_NPRIM];
+  int nprim = 0;
+  for (int k = 0; k < ST_NPRIM; k++) {
+    e->fp[k] = st_primitive_fitness(&p->fitness, bonus[k], sum_sp[k], n[k]);
+    if (p->primitives >> k & 1u) fp[nprim++] = e->fp[k];
+  }
+  e->fitness = st_harmonic_fitness(&p->fitness, fp, nprim);
+  return ST_OK;
+}

@@ -1,0 +1,303 @@
+/* SPDX-License-Identifier: MIT
+ * The post-evaluations' tables, words, conditions, exclusion rule, one trial and the two CSV
+ * writers (selftalk/posteval.h). The inputs and the parallel run are in postrun.c. */
+#include <math.h>
+#include <string.h>
+
+#include "core/internal.h"
+#include "selftalk/posteval.h"
+
+static const char *const g_tests[ST_POST_NTESTS] = {"integration", "robustness", "generalisation"};
+
+const char *st_post_test_name(stPostTest t) {
+  return (int)t >= 0 && t < ST_POST_NTESTS ? g_tests[t] : "?";
+}
+
+int st_post_test_parse(const char *name) {
+  for (int t = 0; t < ST_POST_NTESTS; t++)
+    if (!strcmp(name, g_tests[t])) return t;
+  return -1;
+}
+
+unsigned st_post_test_reader(stPostTest t) {
+  static const unsigned bit[ST_POST_NTESTS] = {
+      ST_CONFIG_INTEGRATION_TEST, ST_CONFIG_ROBUSTNESS_TEST, ST_CONFIG_GENERALISATION_TEST};
+  return (int)t >= 0 && t < ST_POST_NTESTS ? bit[t] : 0u;
+}
+
+/* ---- the trial tables ---- */
+
+void st_post_def_from_config(const stConfig *c, stPostTest test, stPostDef *d) {
+  memset(d, 0, sizeof *d);
+  d->test = test;
+  d->seed = (uint64_t)c->run_seed;
+  d->cells = c->posteval_generalisation_cells;
+  d->cell_size = c->posteval_generalisation_cell_size;
+  d->center[0] = c->scene_object_center_x;
+  d->center[1] = c->scene_object_center_y;
+  d->offset = c->posteval_generalisation_offset;
+  d->repetitions = c->posteval_generalisation_repetitions;
+  switch (test) {
+    case ST_POST_INTEGRATION:
+      d->trials = c->posteval_integration_trials;
+      d->steps = c->integrated_steps;
+      break;
+    case ST_POST_ROBUSTNESS:
+      d->trials = c->posteval_robustness_trials;
+      d->steps = c->integrated_steps;
+      break;
+    default:
+      d->trials = d->cells * d->cells * ST_NPOSTURE * d->repetitions;
+      d->steps = c->posteval_generalisation_steps;
+  }
+}
+
+void st_post_cell_center(const stPostDef *d, int cell, double xy[2]) {
+  const double mid = 0.5 * (d->cells - 1);
+  xy[0] = d->center[0] + (cell / d->cells - mid) * d->cell_size; /* row: along x */
+  xy[1] = d->center[1] + (cell % d->cells - mid) * d->cell_size; /* column: along y */
+}
+
+/* integration, robustness: the integrated stage's types, fresh offsets */
+static void trained_trial(const stScene *s, stRng *rng, stPostTrial *t) {
+  const int k = t->index % ST_NPOSTURE;
+  t->type = t->posture = k;
+  t->cell = -1;
+  t->repetition = t->index / ST_NPOSTURE;
+  t->target = k % 2;
+  st_scene_object(s, k, 1, rng, t->obj);       /* x/y offset, */
+  st_scene_target(s, t->target, rng, t->target_pos); /* then the target's x/y/z */
+}
+
+/* generalisation: a cell of the grid with each posture, the one target */
+static void grid_trial(const stPostDef *d, const stScene *s, stRng *rng, stPostTrial *t) {
+  const int per_cell = ST_NPOSTURE * d->repetitions;
+  t->type = -1;
+  t->cell = t->index / per_cell;
+  t->posture = t->index % per_cell / d->repetitions;
+  t->repetition = t->index % d->repetitions;
+  t->target = ST_TARGET_GENERAL;
+  double xy[2];
+  st_post_cell_center(d, t->cell, xy);
+  t->obj[0] = xy[0] + st_rng_range(rng, -d->offset, d->offset);
+  t->obj[1] = xy[1] + st_rng_range(rng, -d->offset, d->offset);
+  t->obj[2] = s->obj_rest_z;
+  st_scene_target(s, ST_TARGET_GENERAL, NULL, t->target_pos); /* "always kept the same" */
+}
+
+void st_post_trial(const stPostDef *d, const stScene *s, int i, stPostTrial *t) {
+  memset(t, 0, sizeof *t);
+  t->index = i;
+  t->steps = d->steps;
+  stRng rng = st_rng_keyed(d->seed, ST_RNG_POSTEVAL, (uint64_t)d->test, 0, (uint64_t)i);
+  t->solver_key = st_rng_keyed(d->seed, ST_RNG_POSTEVAL_SOLVER, (uint64_t)d->test, 0, (uint64_t)i).key;
+  if (d->test == ST_POST_GENERALISATION) grid_trial(d, s, &rng, t);
+  else trained_trial(s, &rng, t);
+}
+
+void st_post_episode(const stProtocol *p, const stPostTrial *t, stEpisodeSpec *e) {
+  memset(e, 0, sizeof *e);
+  e->dynamic = 1;
+  memcpy(e->qhat0, p->posture[ST_PRIM_REACH][t->posture], sizeof e->qhat0);
+  memcpy(e->obj, t->obj, sizeof e->obj);
+  memcpy(e->target, t->target_pos, sizeof e->target);
+  e->steps = t->steps;
+  e->table_off_step = -1; /* the object-table collision stays on, as in the integrated stage */
+  e->seed_key = t->solver_key;
+}
+
+/* ---- words, conditions, exclusion ---- */
+
+stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, int caretaker,
+                       stWordSource *w, char *err, size_t errsz) {
+  if (caretaker && test != ST_POST_GENERALISATION)
+    return st__errf(err, errsz, "the caretaker variant belongs to the generalisation test (ST-CT0, "
+                    "ST0; the integration test always hears the caretaker)"), ST_ERR_ARG;
+  if (test == ST_POST_INTEGRATION || caretaker) {
+    *w = ST_WORDS_CARETAKER;
+    return ST_OK;
+  }
+  /* the words of the condition's autonomous trials (Table 2.1: the odd ones, or all) */
+  for (int parity = 1; parity >= 0; parity--)
+    if (idef->words[parity] != ST_WORDS_CARETAKER) {
+      *w = idef->words[parity];
+      return ST_OK;
+    }
+  return st__errf(err, errsz, "key 'integrated.words_odd': caretaker, and words_even too: the "
+                  "condition has no autonomous trials to test (expected none or selftalk)"),
+         ST_ERR_ARG;
+}
+
+/* Table 2.1: network.arch, words even / odd, fitness even / odd, first_generation */
+static const struct {
+  const char *name;
+  int arch, words[2], fitness[2], first;
+} g_conditions[] = {
+    {"ST-CT", ST_ARCH_A, {ST_CFG_WORDS_CARETAKER, ST_CFG_WORDS_SELFTALK},
+     {ST_CFG_FIT_PREDICTION, ST_CFG_FIT_INTEGRATED}, 1},
+    {"ST", ST_ARCH_A, {ST_CFG_WORDS_SELFTALK, ST_CFG_WORDS_SELFTALK},
+     {ST_CFG_FIT_INTEGRATED, ST_CFG_FIT_INTEGRATED}, 1},
+    {"CT", ST_ARCH_B, {ST_CFG_WORDS_CARETAKER, ST_CFG_WORDS_NONE},
+     {ST_CFG_FIT_INTEGRATED, ST_CFG_FIT_INTEGRATED}, 1},
+    {"NI", ST_ARCH_B, {ST_CFG_WORDS_NONE, ST_CFG_WORDS_NONE},
+     {ST_CFG_FIT_INTEGRATED, ST_CFG_FIT_INTEGRATED}, 0},
+};
+
+static const char *table21_name(const stConfig *c) {
+  for (size_t i = 0; i < sizeof g_conditions / sizeof g_conditions[0]; i++) {
+    const int same = c->network_arch == g_conditions[i].arch &&
+                     c->integrated_words_even == g_conditions[i].words[0] &&
+                     c->integrated_words_odd == g_conditions[i].words[1] &&
+                     c->integrated_fitness_even == g_conditions[i].fitness[0] &&
+                     c->integrated_fitness_odd == g_conditions[i].fitness[1] &&
+                     c->integrated_first_generation == g_conditions[i].first;
+    if (same) return g_conditions[i].name;
+  }
+  return "custom";
+}
+
+/* the primitive run's kind (thesis 3.1, Fig. 3.3): main-prim from random genotypes is the
+ * non-incremental approach; after simple-prim (prims, or main-prim from its population) the
+ * incremental one */
+static const char *prims_name(const stConfig *c) {
+  switch (c->stage_stages) {
+    case ST_STAGES_PRIMS: return "incremental";
+    case ST_STAGES_MAIN: return c->stage_init_population[0] ? "incremental" : "nonincremental";
+    default: return st_config_enum_name("stage", "stages", c->stage_stages);
+  }
+}
+
+void st_post_condition(const stConfig *c, stPostTest test, int caretaker, char *buf, size_t n) {
+  if (test == ST_POST_INTEGRATION) snprintf(buf, n, "%s", prims_name(c));
+  else snprintf(buf, n, "%s%s", table21_name(c), caretaker ? "0" : "");
+}
+
+int st_post_excluded(const stIntegratedDef *idef, int generation, const uint8_t *success, int n) {
+  for (int i = 0; i < n; i++)
+    if (success[i] && st_integrated_plan(idef, generation, i).autonomous) return 0;
+  return 1;
+}
+
+/* ---- one trial ---- */
+
+/* the integrated scorer (its "reached": within the target radius while lifted), ended at the
+ * first such step, plus the words heard */
+typedef struct postScorer {
+  stIntScorer is;
+  stScorer inner;
+  stIntTrialResult ir; /* the integrated scorer's result */
+  stPostResult *r;
+  int last_word;
+  int len;
+} postScorer;
+
+static void post_begin(void *self) {
+  postScorer *s = self;
+  s->inner.begin(s->inner.self);
+  s->last_word = -1;
+  s->len = 0;
+}
+
+/* the word heard, appended when it differs from the last one heard */
+static void hear(postScorer *s, int word) {
+  static const char letter[ST_NPRIM] = {'r', 'o', 'g', 'm'};
+  if (word < 0 || word >= ST_NPRIM || word == s->last_word) return;
+  s->last_word = word;
+  if (s->len < ST_POST_HEARD_MAX) s->r->heard[s->len] = letter[word];
+  else s->r->heard[ST_POST_HEARD_MAX] = '+';
+  s->len++;
+}
+
+static int post_step(void *self, stTraceStep *ts) {
+  postScorer *s = self;
+  hear(s, ts->word);
+  const int event = s->inner.step(s->inner.self, ts);
+  if (event < 0 && s->is.sc.r.reached_step >= 0) return ST_END_SUCCESS; /* decided */
+  return event;
+}
+
+static void post_end(void *self, const stWorld *w) {
+  postScorer *s = self;
+  s->inner.end(s->inner.self, w);
+  stPostResult *r = s->r;
+  r->reached_step = s->ir.reached_step;
+  r->steps_run = (int)s->ir.steps_run;
+  r->success = s->ir.reached_step >= 0;
+  r->unstable = s->ir.unstable;
+  r->end = r->success ? ST_END_SUCCESS : s->ir.end;
+  const char *h = r->heard;
+  r->open_jumped = !strchr(h, 'o') && (strchr(h, 'g') || strchr(h, 'm'));
+}
+
+stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
+                           const stPostTrial *t, const stController *ctl, stWordSource words,
+                           stPostResult *r, char *err, size_t errsz) {
+  memset(r, 0, sizeof *r);
+  stIntegratedDef def = *idef;
+  def.steps = t->steps; /* the scorer fills the remainder of this length (unused here) */
+  stEpisodeSpec e;
+  st_post_episode(p, t, &e);
+  const stWords w = st_int_words(p, words);
+  postScorer ps;
+  memset(&ps, 0, sizeof ps);
+  ps.inner = st_int_scorer(&ps.is, p, &def, &ps.ir, NULL);
+  ps.r = r;
+  const stScorer sc = {post_begin, post_step, post_end, &ps};
+  return st_episode_run(p, ws, &e, ctl, &w, &sc, NULL, NULL, err, errsz);
+}
+
+/* ---- results ---- */
+
+void st_post_summarise(const stPostResult *r, int n, int excluded, stPostSummary *s) {
+  memset(s, 0, sizeof *s);
+  s->trials = n;
+  double steps = 0.0;
+  for (int i = 0; i < n && !excluded; i++) {
+    s->successes += r[i].success;
+    s->open_jumps += r[i].open_jumped;
+    s->unstable += r[i].unstable;
+    if (r[i].success) steps += r[i].reached_step + 1;
+  }
+  s->mean_steps = s->successes ? steps / s->successes : NAN;
+}
+
+static const char *end_name(int end) {
+  static const char *const names[] = {"full", "success", "failure", "quiet"};
+  return end >= 0 && end <= ST_END_QUIET ? names[end] : "?";
+}
+
+int st_post_write_trials(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
+                         const stPostTrial *t, int ntrials, const stPostResult *r) {
+  fprintf(f, "test,condition,run,individual,trial,type,cell,posture,repetition,words,success,"
+             "reached_step,open_jumped,run_label,heard,end,steps_run,obj_x,obj_y,target_x,"
+             "target_y,target_z\n");
+  for (int i = 0; i < nind; i++) {
+    if (ind[i].excluded) continue;
+    for (int k = 0; k < ntrials; k++) {
+      const stPostResult *x = &r[(size_t)i * (size_t)ntrials + (size_t)k];
+      const stPostTrial *y = &t[k];
+      fprintf(f, "%s,%s,%d,%d,%d,%d,%d,%d,%d,%s,%d,%d,%d,%s,%s,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+              L->test, L->condition, ind[i].run, ind[i].rank, y->index, y->type, y->cell,
+              y->posture, y->repetition, st_word_source_name(L->words), x->success,
+              x->reached_step, x->open_jumped, ind[i].run_label, x->heard, end_name(x->end),
+              x->steps_run, y->obj[0], y->obj[1], y->target_pos[0], y->target_pos[1],
+              y->target_pos[2]);
+    }
+  }
+  return ferror(f) ? -1 : 0;
+}
+
+int st_post_write_summary(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
+                          int ntrials, const stPostResult *r) {
+  fprintf(f, "test,condition,run,individual,successes,trials,excluded,open_jumped,run_label,"
+             "success_rate,mean_steps_to_target,unstable,generation\n");
+  for (int i = 0; i < nind; i++) {
+    stPostSummary s;
+    st_post_summarise(&r[(size_t)i * (size_t)ntrials], ntrials, ind[i].excluded, &s);
+    fprintf(f, "%s,%s,%d,%d,%d,%d,%d,%d,%s,%.17g,%.17g,%d,%d\n", L->test, L->condition,
+            ind[i].run, ind[i].rank, s.successes, s.trials, ind[i].excluded, s.open_jumps,
+            ind[i].run_label, (double)s.successes / s.trials, s.mean_steps, s.unstable,
+            ind[i].generation);
+  }
+  return ferror(f) ? -1 : 0;
+}

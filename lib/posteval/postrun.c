@@ -1,0 +1,528 @@
+/* SPDX-License-Identifier: MIT
+ * A post-evaluation run (selftalk/posteval.h): the keys it reads, its individuals, the trials
+ * in parallel, the files. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "core/internal.h"
+#include "selftalk/io.h"
+#include "selftalk/posteval.h"
+
+/* ---- inputs ---- */
+
+static int is_dir(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+static int exists(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0;
+}
+
+/* the last component of path (trailing slashes ignored) into buf */
+static void last_component(const char *path, char *buf, size_t n) {
+  size_t end = strlen(path);
+  while (end > 1 && path[end - 1] == '/') end--;
+  size_t start = end;
+  while (start > 0 && path[start - 1] != '/') start--;
+  snprintf(buf, n, "%.*s", (int)(end - start), path + start);
+}
+
+void st_post_run_label(const char *path, char *buf, size_t n) {
+  char name[512], dir[512];
+  last_component(path, name, sizeof name);
+  const int run_file = !strcmp(name, "population.genome") || !strcmp(name, "checkpoint") ||
+                       !strcmp(name, "best.genome");
+  if (is_dir(path) || !run_file) {
+    /* a directory's own name; another file's name without its extension */
+    if (!is_dir(path)) name[strcspn(name, ".")] = 0;
+    snprintf(buf, n, "%s", name[0] ? name : "run");
+    return;
+  }
+  /* evolve's files: the run directory's name */
+  snprintf(dir, sizeof dir, "%s", path);
+  char *slash = strrchr(dir, '/');
+  if (slash) *slash = 0;
+  else snprintf(dir, sizeof dir, ".");
+  if (!strcmp(dir, ".") || !dir[0]) {
+    char cwd[512];
+    if (!getcwd(cwd, sizeof cwd)) snprintf(cwd, sizeof cwd, "run");
+    last_component(cwd, buf, n);
+  } else {
+    last_component(dir, buf, n);
+  }
+}
+
+static void individual_init(stPostIndividual *ind, const char *label, const char *path, int rank,
+                            int generation) {
+  memset(ind, 0, sizeof *ind);
+  st__strlcpy(ind->run_label, label, sizeof ind->run_label);
+  st__strlcpy(ind->path, path, sizeof ind->path);
+  ind->rank = rank;
+  ind->generation = generation;
+}
+
+stStatus st_post_load_population(const char *path, int top, int ngenes, stPostIndividual *out,
+                                 char *err, size_t errsz) {
+  char file[ST_PATH_MAX];
+  snprintf(file, sizeof file, "%s", path);
+  if (is_dir(path)) {
+    snprintf(file, sizeof file, "%s/population.genome", path);
+    if (!exists(file)) snprintf(file, sizeof file, "%s/checkpoint", path);
+    if (!exists(file))
+      return st__errf(err, errsz, "%s: neither population.genome nor checkpoint (expected a "
+                      "primitive run directory of evolve, or a population file)", path), ST_ERR_IO;
+  }
+  stGenomeSet set;
+  stStatus st = st_genome_set_read(file, ngenes, &set, err, errsz);
+  if (st) return st;
+  if (set.count < top) {
+    st__errf(err, errsz, "%s has %d genotypes (expected at least posteval.integration_top = %d)",
+             file, set.count, top);
+    st_genome_set_free(&set);
+    return ST_ERR_ARG;
+  }
+  char label[128];
+  st_post_run_label(file, label, sizeof label);
+  for (int i = 0; i < top; i++) {
+    individual_init(&out[i], label, file, i, -1);
+    out[i].genome = set.genome[i];
+  }
+  st_genome_set_free(&set);
+  return ST_OK;
+}
+
+/* the text of an ENUM or BOOL key's value */
+static void choice_name(const char *section, const char *name, int v, char *buf, size_t n) {
+  const stConfigKey *k = st_config_key(st_config_find(section, name));
+  if (k && k->type == ST_CFG_ENUM) st__strlcpy(buf, st_config_enum_name(section, name, v), n);
+  else snprintf(buf, n, "%s", v ? "true" : "false");
+}
+
+/* the run's config.ini has the condition of cfg (Table 2.1's keys) */
+static stStatus same_condition(const char *dir, const stConfig *cfg, char *err, size_t errsz) {
+  char path[ST_PATH_MAX];
+  snprintf(path, sizeof path, "%s/config.ini", dir);
+  stConfig rc;
+  st_config_default(&rc);
+  char e[1024];
+  if (st_config_load(path, &rc, e, sizeof e))
+    return st__errf(err, errsz, "integrated run %s: %s", dir, e), ST_ERR_IO;
+  static const char *const keys[][2] = {
+      {"stage", "stages"},           {"network", "arch"},       {"integrated", "words_even"},
+      {"integrated", "words_odd"},   {"integrated", "fitness_even"}, {"integrated", "fitness_odd"},
+      {"integrated", "first_generation"}};
+  const int have[] = {rc.stage_stages, rc.network_arch, rc.integrated_words_even,
+                      rc.integrated_words_odd, rc.integrated_fitness_even,
+                      rc.integrated_fitness_odd, rc.integrated_first_generation};
+  const int want[] = {ST_STAGES_INTEGRATED, cfg->network_arch, cfg->integrated_words_even,
+                      cfg->integrated_words_odd, cfg->integrated_fitness_even,
+                      cfg->integrated_fitness_odd, cfg->integrated_first_generation};
+  for (int i = 0; i < (int)(sizeof have / sizeof have[0]); i++) {
+    if (have[i] == want[i]) continue;
+    char h[64], w[64];
+    choice_name(keys[i][0], keys[i][1], have[i], h, sizeof h);
+    choice_name(keys[i][0], keys[i][1], want[i], w, sizeof w);
+    return st__errf(err, errsz, "%s: key '%s.%s' is %s, the config's is %s (expected an "
+                    "integrated run of the config's condition)", path, keys[i][0], keys[i][1],
+                    h, w), ST_ERR_ARG;
+  }
+  return ST_OK;
+}
+
+/* the best of the last generation: best.genome's last record and its generation */
+static stStatus last_best(const char *dir, int ngenes, stGenome *g, int *generation, char *err,
+                          size_t errsz) {
+  char path[ST_PATH_MAX];
+  snprintf(path, sizeof path, "%s/best.genome", dir);
+  stGenomeSet set;
+  stStatus st = st_genome_set_read(path, ngenes, &set, err, errsz);
+  if (st) return st;
+  if (set.count == 0 || set.generation[set.count - 1] < 0) {
+    st_genome_set_free(&set);
+    return st__errf(err, errsz, "%s: no genotype with a '# generation G' line (expected "
+                    "evolve's per-generation bests)", path), ST_ERR_PARSE;
+  }
+  *g = set.genome[set.count - 1];
+  *generation = set.generation[set.count - 1];
+  st_genome_set_free(&set);
+  return ST_OK;
+}
+
+/* splits a CSV line in place; returns the number of fields (at most max) */
+static int split_csv(char *line, char **field, int max) {
+  int n = 0;
+  line[strcspn(line, "\r\n")] = 0;
+  for (char *p = line; n < max;) {
+    field[n++] = p;
+    p = strchr(p, ',');
+    if (!p) break;
+    *p++ = 0;
+  }
+  return n;
+}
+
+#define MAX_FIELDS 64
+
+/* the columns generation and best_t0.. of an integrated fitness.csv header */
+static int training_columns(char *header, int *gcol, int *tcol) {
+  char *f[MAX_FIELDS];
+  const int n = split_csv(header, f, MAX_FIELDS);
+  int nt = 0;
+  *gcol = -1;
+  for (int i = 0; i < n; i++) {
+    char want[32];
+    snprintf(want, sizeof want, "best_t%d", nt);
+    if (!strcmp(f[i], "generation")) *gcol = i;
+    if (!strcmp(f[i], want) && nt < ST_INT_MAX_TRIALS) tcol[nt++] = i;
+  }
+  return nt;
+}
+
+/* the successes of the best in training generation G: fitness.csv's best_t<i> of G's row */
+static stStatus training_successes(const char *dir, int generation, uint8_t *success, int *n,
+                                   char *err, size_t errsz) {
+  char path[ST_PATH_MAX];
+  snprintf(path, sizeof path, "%s/fitness.csv", dir);
+  FILE *f = fopen(path, "r");
+  if (!f) return st__errf(err, errsz, "%s: cannot open: %s", path, strerror(errno)), ST_ERR_IO;
+  char *line = NULL;
+  size_t cap = 0;
+  int gcol = -1, tcol[ST_INT_MAX_TRIALS], lineno = 0, found = 0;
+  stStatus st = ST_OK;
+  *n = 0;
+  while (!found && !st && getline(&line, &cap, f) > 0) {
+    if (++lineno == 1) {
+      *n = training_columns(line, &gcol, tcol);
+      if (gcol < 0 || *n == 0) {
+        st = ST_ERR_PARSE;
+        st__errf(err, errsz, "%s:1: no generation and best_t0 columns (expected the "
+                 "fitness.csv of an integrated run)", path);
+      }
+      continue;
+    }
+    char *fld[MAX_FIELDS];
+    const int nf = split_csv(line, fld, MAX_FIELDS);
+    int g;
+    if (nf <= tcol[*n - 1] || nf <= gcol || st__parse_int(fld[gcol], &g)) {
+      st = ST_ERR_PARSE;
+      st__errf(err, errsz, "%s:%d: %d fields or generation '%s' (expected a row of the header's "
+               "columns)", path, lineno, nf, nf > gcol ? fld[gcol] : "");
+      break;
+    }
+    if (g != generation) continue;
+    found = 1;
+    for (int i = 0; i < *n; i++) success[i] = (uint8_t)(strcmp(fld[tcol[i]], "0") != 0);
+  }
+  free(line);
+  fclose(f);
+  if (!st && !found) {
+    st = ST_ERR_PARSE;
+    st__errf(err, errsz, "%s: no row for generation %d, the last of best.genome (expected the "
+             "run's own fitness.csv)", path, generation);
+  }
+  return st;
+}
+
+stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
+                          stPostIndividual *out, char *err, size_t errsz) {
+  if (!is_dir(dir))
+    return st__errf(err, errsz, "%s: not a directory (expected an integrated run directory of "
+                    "evolve: config.ini, fitness.csv, best.genome)", dir), ST_ERR_IO;
+  stStatus st = same_condition(dir, cfg, err, errsz);
+  stGenome g;
+  int generation = -1;
+  if (!st) st = last_best(dir, st_arch_ngenes((stNetArch)cfg->network_arch), &g, &generation, err, errsz);
+  uint8_t success[ST_INT_MAX_TRIALS];
+  int n = 0;
+  if (!st) st = training_successes(dir, generation, success, &n, err, errsz);
+  if (st) return st;
+  char label[128];
+  st_post_run_label(dir, label, sizeof label);
+  char path[ST_PATH_MAX];
+  snprintf(path, sizeof path, "%s/best.genome", dir);
+  individual_init(out, label, path, 0, generation);
+  out->genome = g;
+  if (exclusion) {
+    stIntegratedDef idef;
+    st_integrated_def_from_config(cfg, &idef);
+    out->excluded = st_post_excluded(&idef, generation, success, n);
+  }
+  return ST_OK;
+}
+
+/* ---- the run ---- */
+
+typedef struct postRun {
+  const stPostRunDef *def;
+  const stConfig *cfg;
+  stPostDef pd;
+  stIntegratedDef idef;
+  stPostLabels labels;
+  char condition[64];
+  stWordSource words;
+  stPostIndividual *ind;
+  int nind;
+  stPostTrial *trials;
+  stNetParams *net;
+  stPostResult *res;
+  stProtocol *proto;
+  stWorkspace *ws;
+  int threads;
+  long total, done;
+  double t0, last_print;
+} postRun;
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* keys: the config file's against the default (read by the run's own stages or by the test),
+ * the --set options' against the file (read by the test) */
+static stStatus check_keys(const postRun *R, char *err, size_t errsz) {
+  stConfig d;
+  st_config_default(&d);
+  const stConfig *file = R->def->file_cfg ? R->def->file_cfg : &d;
+  const unsigned reader = st_post_test_reader(R->def->test);
+  stStatus st = st_config_check_changes(file, &d, "the default",
+                                        st_config_run_stages(file) | reader, err, errsz);
+  if (!st) st = st_config_check_changes(R->cfg, file, "the config file's value", reader, err, errsz);
+  return st;
+}
+
+static stStatus load_individuals(postRun *R, char *err, size_t errsz) {
+  const stPostRunDef *d = R->def;
+  const int integration = d->test == ST_POST_INTEGRATION;
+  const int per = integration ? R->cfg->posteval_integration_top : 1;
+  if (d->ninputs < 1)
+    return st__errf(err, errsz, "no inputs (expected %s)", integration
+                    ? "population files or primitive run directories"
+                    : "integrated run directories"), ST_ERR_ARG;
+  R->nind = d->ninputs * per;
+  R->ind = calloc((size_t)R->nind, sizeof *R->ind);
+  if (!R->ind) return st__errf(err, errsz, "posteval: out of memory"), ST_ERR_NOMEM;
+  const int ngenes = st_arch_ngenes((stNetArch)R->cfg->network_arch);
+  const int exclusion = d->test == ST_POST_GENERALISATION && !d->caretaker;
+  for (int i = 0; i < d->ninputs; i++) {
+    stStatus st = integration
+                      ? st_post_load_population(d->inputs[i], per, ngenes, &R->ind[i * per], err, errsz)
+                      : st_post_load_run(d->inputs[i], R->cfg, exclusion, &R->ind[i], err, errsz);
+    if (st) return st;
+    for (int k = 0; k < per; k++) R->ind[i * per + k].run = i; /* the input's position */
+    for (int j = 0; j < i * per; j++)
+      if (!strcmp(R->ind[j].run_label, R->ind[i * per].run_label))
+        return st__errf(err, errsz, "%s and %s have the same run label '%s' (expected runs in "
+                        "directories of different names)", R->ind[j].path, R->ind[i * per].path,
+                        R->ind[j].run_label), ST_ERR_ARG;
+  }
+  return ST_OK;
+}
+
+/* the out dir exists (created) and takes files, before any work */
+static stStatus prepare_dir(const char *dir, char *err, size_t errsz) {
+  char tmp[ST_PATH_MAX];
+  if (!dir[0] || strlen(dir) + 32 >= sizeof tmp)
+    return st__errf(err, errsz, "output directory '%s': bad path", dir), ST_ERR_IO;
+  snprintf(tmp, sizeof tmp, "%s", dir);
+  for (char *p = tmp + 1; *p; p++)
+    if (*p == '/') {
+      *p = 0;
+      mkdir(tmp, 0777);
+      *p = '/';
+    }
+  if (mkdir(tmp, 0777) != 0 && errno != EEXIST)
+    return st__errf(err, errsz, "output directory '%s': cannot create: %s", dir, strerror(errno)),
+           ST_ERR_IO;
+  snprintf(tmp, sizeof tmp, "%s/.write_probe", dir);
+  FILE *f = fopen(tmp, "w");
+  if (!f || fputs("probe\n", f) < 0 || fclose(f) != 0)
+    return st__errf(err, errsz, "output directory '%s': not writable: %s", dir, strerror(errno)),
+           ST_ERR_IO;
+  remove(tmp);
+  return ST_OK;
+}
+
+/* what the run's rows say: test, condition, words; the trial table */
+static stStatus plan(postRun *R, char *err, size_t errsz) {
+  const stPostRunDef *d = R->def;
+  st_post_def_from_config(R->cfg, d->test, &R->pd);
+  st_integrated_def_from_config(R->cfg, &R->idef);
+  stStatus st = st_post_words(&R->idef, d->test, d->caretaker, &R->words, err, errsz);
+  if (st) return st;
+  if (d->condition) snprintf(R->condition, sizeof R->condition, "%s", d->condition);
+  else st_post_condition(R->cfg, d->test, d->caretaker, R->condition, sizeof R->condition);
+  if (!R->condition[0] || strpbrk(R->condition, ",\"| \t\r\n"))
+    return st__errf(err, errsz, "condition '%s': not a plain label (expected a name without "
+                    "commas, quotes, '|' or blanks)", R->condition), ST_ERR_ARG;
+  R->labels.test = st_post_test_name(d->test);
+  R->labels.condition = R->condition;
+  R->labels.words = R->words;
+  R->threads = d->threads > 0 ? d->threads : R->cfg->run_threads > 0 ? R->cfg->run_threads
+                                                                        : omp_get_num_procs();
+  return ST_OK;
+}
+
+static stStatus allocate(postRun *R, char *err, size_t errsz) {
+  const size_t nt = (size_t)R->pd.trials;
+  R->trials = calloc(nt, sizeof *R->trials);
+  R->net = calloc((size_t)R->nind, sizeof *R->net);
+  R->res = calloc((size_t)R->nind * nt, sizeof *R->res);
+  R->ws = calloc((size_t)R->threads, sizeof *R->ws);
+  if (R->trials && R->net && R->res && R->ws) return ST_OK;
+  return st__errf(err, errsz, "posteval: out of memory"), ST_ERR_NOMEM;
+}
+
+/* the table and the networks */
+static stStatus prepare(postRun *R, char *err, size_t errsz) {
+  for (int t = 0; t < R->pd.trials; t++) st_post_trial(&R->pd, &R->proto->scene, t, &R->trials[t]);
+  for (int i = 0; i < R->nind; i++) {
+    char e[512];
+    stStatus st = st_net_decode(&R->proto->net, (stNetArch)R->cfg->network_arch,
+                                &R->ind[i].genome, &R->net[i], e, sizeof e);
+    if (st) return st__errf(err, errsz, "%s, genotype %d: %s", R->ind[i].path, R->ind[i].rank, e), st;
+  }
+  R->total = 0;
+  for (int i = 0; i < R->nind; i++) R->total += R->ind[i].excluded ? 0 : R->pd.trials;
+  return ST_OK;
+}
+
+static void hms(double s, char *buf, size_t n) {
+  const long t = (long)(s + 0.5);
+  snprintf(buf, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+}
+
+/* one more trial done; a progress line every 10 s and at the end (called in a critical
+ * section) */
+static void progress(postRun *R) {
+  R->done++;
+  FILE *f = R->def->progress;
+  const double t = now();
+  if (!f || (t - R->last_print < 10.0 && R->done < R->total)) return;
+  R->last_print = t;
+  const double el = t - R->t0, rate = R->done / (el > 0 ? el : 1e-9);
+  char e1[32], e2[32];
+  hms(el, e1, sizeof e1);
+  hms((double)(R->total - R->done) / rate, e2, sizeof e2);
+  fprintf(f, "posteval %s %s: %ld/%ld trials (%.1f%%) | %.2f trials/s elapsed %s left %s\n",
+          R->labels.test, R->condition, R->done, R->total, 100.0 * R->done / R->total, rate, e1, e2);
+  fflush(f);
+}
+
+/* every trial of every individual not excluded; unit u = individual u / trials, trial
+ * u % trials; results by index, so the files do not depend on the threads */
+static stStatus run_trials(postRun *R, char *err, size_t errsz) {
+  const long nt = R->pd.trials, units = (long)R->nind * nt;
+  long failed = -1;
+  stStatus first = ST_OK;
+  char msg[1200] = "";
+  R->t0 = R->last_print = now();
+#pragma omp parallel num_threads(R->threads)
+  {
+    stWorkspace *ws = &R->ws[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 1)
+    for (long u = 0; u < units; u++) {
+      const int i = (int)(u / nt), t = (int)(u % nt);
+      if (R->ind[i].excluded) continue;
+      char e[512];
+      stNetController nc;
+      const stController ctl = st_net_controller(&nc, &R->net[i], NULL, 0);
+      stStatus st = st_post_run_trial(R->proto, &R->idef, ws, &R->trials[t], &ctl, R->words,
+                                      &R->res[u], e, sizeof e);
+#pragma omp critical
+      {
+        if (st && (failed < 0 || u < failed)) {
+          failed = u;
+          first = st;
+          snprintf(msg, sizeof msg, "%s, genotype %d, trial %d: %s", R->ind[i].path,
+                   R->ind[i].rank, t, e);
+        }
+        progress(R);
+      }
+    }
+  }
+  if (failed >= 0) st__errf(err, errsz, "%s", msg);
+  return first;
+}
+
+static stStatus write_file(const char *dir, const char *name, const postRun *R, char *err,
+                           size_t errsz) {
+  char path[ST_PATH_MAX];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  stAtomicFile af;
+  stStatus st = st_atomic_open(&af, path, err, errsz);
+  if (st) return st;
+  int rc;
+  if (!strcmp(name, "config.ini")) rc = st_config_write(af.f, R->cfg);
+  else if (!strcmp(name, "trials.csv"))
+    rc = st_post_write_trials(af.f, &R->labels, R->ind, R->nind, R->trials, R->pd.trials, R->res);
+  else rc = st_post_write_summary(af.f, &R->labels, R->ind, R->nind, R->pd.trials, R->res);
+  if (rc) {
+    st_atomic_abort(&af);
+    return st__errf(err, errsz, "%s: cannot write", path), ST_ERR_IO;
+  }
+  return st_atomic_commit(&af, err, errsz);
+}
+
+static stStatus write_files(const postRun *R, char *err, size_t errsz) {
+  static const char *const names[] = {"config.ini", "trials.csv", "summary.csv"};
+  for (int i = 0; i < 3; i++) {
+    stStatus st = write_file(R->def->out_dir, names[i], R, err, errsz);
+    if (st) return st;
+  }
+  return ST_OK;
+}
+
+static void finish_line(const postRun *R) {
+  FILE *f = R->def->progress;
+  if (!f) return;
+  int excluded = 0;
+  for (int i = 0; i < R->nind; i++) excluded += R->ind[i].excluded;
+  char e[32];
+  hms(now() - R->t0, e, sizeof e);
+  fprintf(f, "posteval %s %s: %d individuals (%d excluded), %ld trials in %s on %d threads; "
+          "files in %s\n", R->labels.test, R->condition, R->nind, excluded, R->total, e,
+          R->threads, R->def->out_dir);
+}
+
+static void release(postRun *R) {
+  for (int t = 0; R->ws && t < R->threads; t++) st_workspace_free(&R->ws[t]);
+  free(R->ws);
+  free(R->ind);
+  free(R->trials);
+  free(R->net);
+  free(R->res);
+  st_protocol_destroy(R->proto);
+}
+
+stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz) {
+  postRun R;
+  memset(&R, 0, sizeof R);
+  R.def = def;
+  R.cfg = def->cfg;
+  if ((int)def->test < 0 || def->test >= ST_POST_NTESTS)
+    return st__errf(err, errsz, "test %d (expected integration, robustness or generalisation)",
+                    (int)def->test), ST_ERR_ARG;
+  stStatus st = st_config_validate(def->cfg, err, errsz);
+  if (!st) st = check_keys(&R, err, errsz);
+  if (!st) st = plan(&R, err, errsz);
+  if (!st) st = load_individuals(&R, err, errsz);
+  if (!st) st = prepare_dir(def->out_dir, err, errsz);
+  if (!st) st = allocate(&R, err, errsz);
+  if (!st) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
+  if (!st) st = prepare(&R, err, errsz);
+  if (!st) st = run_trials(&R, err, errsz);
+  if (!st) st = write_files(&R, err, errsz);
+  if (!st) finish_line(&R);
+  release(&R);
+  return st;
+}

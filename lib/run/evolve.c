@@ -1,0 +1,577 @@
+/* SPDX-License-Identifier: MIT */
+#define _POSIX_C_SOURCE 200809L
+#include "selftalk/evolve.h"
+
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "core/checkpoint.h"
+#include "core/internal.h"
+#include "selftalk/assemble.h"
+#include "selftalk/ga.h"
+#include "selftalk/integrated.h"
+#include "selftalk/io.h"
+#include "selftalk/trial.h"
+
+/* the primitive stages evolve the base network; network.arch names what the integrated stage
+ * grows it into (thesis 2.9.2), so a run without that stage refuses another value of it */
+static const stNetArch PRIM_ARCH = ST_ARCH_BASE;
+
+typedef struct run {
+  const stEvolveDef *def;
+  const stConfig *cfg;
+  stProtocol *proto;
+  stGa *ga;
+  int integrated;     /* the integrated stage (thesis 2.9); else the primitive stages */
+  stIntegratedDef idef;
+  stStage stages[2];
+  int nstages;
+  int stage_idx;      /* index into stages */
+  int stage_gen;      /* generations done in the current stage */
+  int limit;          /* total generations allowed */
+  int threads;
+  stWorkspace *ws;    /* one per thread */
+  stEvaluation *eval; /* per individual (primitive stages) */
+  stIntEvaluation *ieval; /* per individual (integrated stage) */
+  stEvolveTask *tasks;    /* per individual: what to evaluate, */
+  stEvolveResult *results; /* and what it gave */
+  double *fitness;
+  stGenome *sorted;   /* the final population, best first */
+  double *sorted_fit;
+  double t_start;
+  int done_here;      /* generations run by this process */
+  char path[6][ST_PATH_MAX];
+} run;
+
+enum { P_CONFIG, P_CSV, P_BEST, P_POP, P_CKPT, P_PROBE };
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void hms(double s, char *buf, size_t n) {
+  long t = (long)(s + 0.5);
+  snprintf(buf, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+}
+
+static long long file_size(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0 ? (long long)st.st_size : -1;
+}
+
+/* the out dir must exist (created) and take files, before any work */
+static stStatus prepare_dir(run *R, char *err, size_t errsz) {
+  const char *dir = R->def->out_dir;
+  char tmp[ST_PATH_MAX];
+  size_t n = strlen(dir);
+  if (n == 0 || n + 32 >= sizeof tmp) {
+    st__errf(err, errsz, "output directory '%s': bad path", dir);
+    return ST_ERR_IO;
+  }
+  /* mkdir -p */
+  st__strlcpy(tmp, dir, sizeof tmp);
+  for (char *p = tmp + 1; *p; p++)
+    if (*p == '/') {
+      *p = 0;
+      mkdir(tmp, 0777);
+      *p = '/';
+    }
+  if (mkdir(tmp, 0777) != 0 && errno != EEXIST) {
+    st__errf(err, errsz, "output directory '%s': cannot create: %s", dir, strerror(errno));
+    return ST_ERR_IO;
+  }
+  static const char *names[6] = {"config.ini", "fitness.csv", "best.genome", "population.genome",
+                                 "checkpoint", ".write_probe"};
+  for (int i = 0; i < 6; i++) snprintf(R->path[i], ST_PATH_MAX, "%s/%s", dir, names[i]);
+  FILE *f = fopen(R->path[P_PROBE], "w");
+  if (!f || fputs("probe\n", f) < 0 || fclose(f) != 0) {
+    st__errf(err, errsz, "output directory '%s': not writable: %s", dir, strerror(errno));
+    return ST_ERR_IO;
+  }
+  remove(R->path[P_PROBE]);
+  return ST_OK;
+}
+
+/* ---- checkpoint (lib/core/checkpoint.h) ---- */
+
+/* what a checkpoint of this run may hold */
+static stCheckpointRun checkpoint_run(const run *R) {
+  stCheckpointRun cr = {R->nstages, R->cfg->ga_population,
+                        st_arch_ngenes(R->integrated ? R->idef.arch : PRIM_ARCH), R->limit};
+  return cr;
+}
+
+static stStatus write_checkpoint(run *R, int generation, int done, const stGenome *pop, int n,
+                                 char *err, size_t errsz) {
+  stCheckpoint c = {generation, R->stage_idx, R->stage_gen, done, file_size(R->path[P_CSV]),
+                    file_size(R->path[P_BEST]), {0, NULL, NULL, NULL}};
+  if (c.csv_bytes < 0 || c.best_bytes < 0) {
+    st__errf(err, errsz, "%s: cannot measure %s and %s: %s", R->path[P_CKPT], R->path[P_CSV],
+             R->path[P_BEST], strerror(errno));
+    return ST_ERR_IO;
+  }
+  stAtomicFile af;
+  stStatus st = st_atomic_open(&af, R->path[P_CKPT], err, errsz);
+  if (st) return st;
+  if (st__checkpoint_write(af.f, &c, pop, n)) {
+    st__errf(err, errsz, "%s: cannot write: %s", af.tmp, strerror(errno));
+    st_atomic_abort(&af);
+    return ST_ERR_IO;
+  }
+  return st_atomic_commit(&af, err, errsz);
+}
+
+/* ---- evaluation ---- */
+
+static const char *stage_label(const run *R) {
+  return R->integrated ? "integrated" : st_stage_name(R->stages[R->stage_idx]);
+}
+
+/* the generation's tasks: the individuals in GA order */
+static void make_tasks(run *R, int generation) {
+  for (int i = 0; i < st_ga_def(R->ga)->population; i++) {
+    stEvolveTask *t = &R->tasks[i];
+    t->integrated = R->integrated;
+    t->stage = R->stages[R->stage_idx];
+    t->generation = generation;
+    t->individual = i;
+    t->genome = *st_ga_genome(R->ga, i);
+  }
+}
+
+/* every task on this process's threads */
+static void evaluate_here(run *R) {
+  const int n = st_ga_def(R->ga)->population;
+#pragma omp parallel num_threads(R->threads)
+  {
+    stWorkspace *ws = &R->ws[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 1)
+    for (int i = 0; i < n; i++)
+      st_evolve_task_run(R->proto, &R->idef, ws, &R->tasks[i], &R->results[i]);
+  }
+}
+
+/* the genotypes' fitness, or the first that could not be evaluated */
+static stStatus evaluate(run *R, int generation, char *err, size_t errsz) {
+  const int n = st_ga_def(R->ga)->population;
+  make_tasks(R, generation);
+  const stEvolveEvaluator *ev = R->def->evaluator;
+  stStatus st = ST_OK;
+  if (!ev) evaluate_here(R);
+  else if ((st = ev->evaluate(ev->self, R->cfg, R->tasks, n, R->results, err, errsz))) return st;
+  for (int i = 0; i < n; i++) {
+    const stEvolveResult *r = &R->results[i];
+    if (r->status) {
+      st__errf(err, errsz, "evaluating genotype %d: %s", i, r->err);
+      return r->status;
+    }
+    R->eval[i] = r->eval;
+    R->ieval[i] = r->ieval;
+    R->fitness[i] = r->fitness;
+  }
+  return ST_OK;
+}
+
+/* ---- output ---- */
+
+static stStatus append(const char *path, const char *text, char *err, size_t errsz) {
+  FILE *f = fopen(path, "a");
+  size_t n = strlen(text);
+  if (!f || fwrite(text, 1, n, f) != n || fflush(f) != 0 || fsync(fileno(f)) != 0) {
+    st__errf(err, errsz, "%s: cannot write: %s", path, strerror(errno));
+    if (f) fclose(f);
+    return ST_ERR_IO;
+  }
+  if (fclose(f) != 0) {
+    st__errf(err, errsz, "%s: cannot write: %s", path, strerror(errno));
+    return ST_ERR_IO;
+  }
+  return ST_OK;
+}
+
+/* fitness.csv's columns; then one best_tI column per trial */
+static void csv_header(const run *R, char *buf, size_t n) {
+  int k = snprintf(buf, n, "%s",
+                   R->integrated
+                       ? "generation,best,mean,worst,best_F_int,best_F_pred,best_bonus,"
+                         "best_bonus_auto,best_successes"
+                       : "generation,best,mean,worst,best_bonus,stage,stage_generation,all_success,"
+                         "best_successes,best_F_reach,best_F_open,best_F_grasp,best_F_move");
+  const int trials = R->integrated ? R->idef.trials : ST_PRIM_TRIALS;
+  for (int t = 0; t < trials && k < (int)n; t++) k += snprintf(buf + k, n - (size_t)k, ",best_t%d", t);
+  if (k < (int)n) snprintf(buf + k, n - (size_t)k, "\n");
+}
+
+static stStatus start_files(run *R, char *err, size_t errsz) {
+  stAtomicFile af;
+  stStatus st = st_atomic_open(&af, R->path[P_CONFIG], err, errsz);
+  if (st) return st;
+  st_config_write(af.f, R->cfg);
+  if ((st = st_atomic_commit(&af, err, errsz))) return st;
+  char hdr[1024];
+  csv_header(R, hdr, sizeof hdr);
+  FILE *f = fopen(R->path[P_CSV], "w");
+  if (!f || fputs(hdr, f) < 0 || fclose(f) != 0) {
+    st__errf(err, errsz, "%s: cannot write: %s", R->path[P_CSV], strerror(errno));
+    return ST_ERR_IO;
+  }
+  f = fopen(R->path[P_BEST], "w");
+  if (!f || fclose(f) != 0) {
+    st__errf(err, errsz, "%s: cannot write: %s", R->path[P_BEST], strerror(errno));
+    return ST_ERR_IO;
+  }
+  remove(R->path[P_POP]);
+  return ST_OK;
+}
+
+/* the run in the directory must have been made with the same configuration (threads aside) */
+static stStatus same_config(run *R, char *err, size_t errsz) {
+  stConfig old, cur = *R->cfg;
+  st_config_default(&old);
+  char e[512];
+  if (st_config_load(R->path[P_CONFIG], &old, e, sizeof e)) {
+    st__errf(err, errsz, "cannot resume: %s", e);
+    return ST_ERR_PARSE;
+  }
+  old.run_threads = cur.run_threads = 0;
+  if (memcmp(&old, &cur, sizeof old)) {
+    st__errf(err, errsz, "cannot resume: %s differs from this run's configuration (resume needs "
+             "the same config and --set options)", R->path[P_CONFIG]);
+    return ST_ERR_ARG;
+  }
+  return ST_OK;
+}
+
+/* ---- the initial population ---- */
+
+/* primitive stages: stage.init_population, or none (random genotypes) */
+static stStatus load_initial(run *R, stGenomeSet *set, char *err, size_t errsz) {
+  const char *path = R->cfg->stage_init_population;
+  memset(set, 0, sizeof *set);
+  if (!path[0]) return ST_OK;
+  stStatus st = st_genome_set_read(path, st_arch_ngenes(PRIM_ARCH), set, err, errsz);
+  if (st) {
+    st__err_key(err, errsz, "stage.init_population");
+    return st;
+  }
+  if (set->count < R->cfg->ga_population) {
+    st__errf(err, errsz, "key 'stage.init_population': %s has %d genotypes (expected at least "
+             "ga.population = %d)", path, set->count, R->cfg->ga_population);
+    st_genome_set_free(set);
+    return ST_ERR_ARG;
+  }
+  return ST_OK;
+}
+
+/* integrated stage: the top genotypes of the primitive runs, grown (selftalk/assemble.h) */
+static stStatus assemble_initial(run *R, stGenomeSet *set, char *err, size_t errsz) {
+  stAssembly a;
+  stStatus st = st_assemble_population(R->cfg, &a, err, errsz);
+  if (st) return st;
+  memset(set, 0, sizeof *set);
+  set->count = a.count;
+  set->genome = a.genome; /* handed over: st_genome_set_free frees it */
+  if (R->def->progress)
+    fprintf(R->def->progress, "evolve: integrated stage (network %s) from the top %d of %d "
+            "population files: %d genotypes%s\n", st_arch_name(R->idef.arch), R->cfg->integrated_top,
+            a.nfiles, a.taken, a.taken < a.count ? ", repeated to fill the population" : "");
+  return ST_OK;
+}
+
+/* the GA: base genotypes and every bit mutable (primitive stages), or the integrated network's
+ * genotypes with only the new genes mutable at the integrated rate */
+static stStatus make_ga(run *R, const stGenome *pop0, int npop0, char *err, size_t errsz) {
+  const stConfig *cfg = R->cfg;
+  stGaDef gd = st_ga_def_from_config(cfg);
+  if (R->integrated) gd.mutation_rate = cfg->ga_mutation_rate_integrated;
+  gd.ngenes = st_arch_ngenes(R->integrated ? R->idef.arch : PRIM_ARCH);
+  uint8_t mask[ST_GENOME_MAX_GENES];
+  st_genome_mask_new_genes(mask, gd.ngenes);
+  return st_ga_create(&gd, pop0, npop0, R->integrated ? mask : NULL, &R->ga, err, errsz);
+}
+
+/* ---- one generation's records ---- */
+
+typedef struct genStats {
+  int best;
+  double mean, worst;
+  int all;      /* genotypes that solved every trial they were evaluated on */
+  int unstable; /* trials the simulation gave up on */
+} genStats;
+
+static genStats gen_stats(const run *R) {
+  const int n = st_ga_def(R->ga)->population;
+  genStats s = {st_ga_ranked(R->ga, 0), 0.0, INFINITY, 0, 0};
+  for (int i = 0; i < n; i++) {
+    s.mean += R->fitness[i] / n;
+    if (R->fitness[i] < s.worst) s.worst = R->fitness[i];
+    if (R->integrated) {
+      s.unstable += R->ieval[i].unstable;
+    } else {
+      s.unstable += R->eval[i].unstable;
+      s.all += R->eval[i].successes == R->eval[i].ntrials; /* every trial it is evaluated on */
+    }
+  }
+  return s;
+}
+
+static void csv_row(const run *R, int gen, const genStats *s, char *row, size_t n) {
+  int k;
+  if (R->integrated) {
+    const stIntEvaluation *be = &R->ieval[s->best];
+    k = snprintf(row, n, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d", gen, R->fitness[s->best],
+                 s->mean, s->worst, be->f_int, be->f_pred, be->bonus, be->bonus_auto, be->successes);
+    for (int t = 0; t < be->ntrials; t++) k += snprintf(row + k, n - (size_t)k, ",%d", be->success[t]);
+  } else {
+    const stEvaluation *be = &R->eval[s->best];
+    k = snprintf(row, n, "%d,%.17g,%.17g,%.17g,%.17g,%s,%d,%d,%d,%.17g,%.17g,%.17g,%.17g", gen,
+                 R->fitness[s->best], s->mean, s->worst, R->cfg->fitness_bonus * be->successes,
+                 stage_label(R), R->stage_gen, s->all, be->successes, be->fp[0], be->fp[1], be->fp[2],
+                 be->fp[3]);
+    for (int t = 0; t < ST_PRIM_TRIALS; t++) k += snprintf(row + k, n - (size_t)k, ",%d", be->success[t]);
+  }
+  snprintf(row + k, n - (size_t)k, "\n");
+}
+
+/* the generation's fitness.csv row and its best genotype, appended and synced */
+static stStatus write_records(run *R, int gen, const genStats *s, char *err, size_t errsz) {
+  char row[2048];
+  csv_row(R, gen, s, row, sizeof row);
+  stStatus st = append(R->path[P_CSV], row, err, errsz);
+  if (st) return st;
+  char bg[4 * ST_GENOME_MAX_GENES + 256];
+  int b = snprintf(bg, sizeof bg, "# generation %d\n# stage %s\n# fitness %.17g\n", gen, stage_label(R),
+                   R->fitness[s->best]);
+  const stGenome *g = st_ga_genome(R->ga, s->best);
+  for (int i = 0; i < g->ngenes; i++) b += snprintf(bg + b, sizeof bg - (size_t)b, "%04x", g->gene[i]);
+  snprintf(bg + b, sizeof bg - (size_t)b, "\n");
+  return append(R->path[P_BEST], bg, err, errsz);
+}
+
+static void progress(const run *R, int gen, const genStats *s) {
+  FILE *f = R->def->progress;
+  if (!f) return;
+  double el = now() - R->t_start, rate = R->done_here / (el > 0 ? el : 1e-9);
+  char e1[32], e2[32];
+  hms(el, e1, sizeof e1);
+  hms((R->limit - gen - 1) / rate, e2, sizeof e2);
+  /* trials the simulation gave up on (scored as failures): rare, but a user must see them */
+  char unst[48] = "";
+  if (s->unstable) snprintf(unst, sizeof unst, " | %d unstable trials", s->unstable);
+  if (R->integrated) {
+    const stIntEvaluation *be = &R->ieval[s->best];
+    fprintf(f, "gen %4d integrated best %8.3f mean %8.3f F_int %8.3f F_pred %8.3f bonus %4.0f "
+            "auto %4.0f solves %2d/%d | %.2f gen/s elapsed %s left <= %s%s\n",
+            gen, R->fitness[s->best], s->mean, be->f_int, be->f_pred, be->bonus, be->bonus_auto,
+            be->successes, be->ntrials, rate, e1, e2, unst);
+  } else {
+    const stEvaluation *be = &R->eval[s->best];
+    fprintf(f,
+            "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/%d all-solved %3d | "
+            "%.2f gen/s elapsed %s left <= %s%s\n",
+            gen, stage_label(R), R->fitness[s->best], s->mean, R->cfg->fitness_bonus * be->successes,
+            be->successes, be->ntrials, s->all, rate, e1, e2, unst);
+  }
+  fflush(f);
+}
+
+/* the final population, best first, with its fitness, and the last checkpoint */
+static stStatus finish(run *R, int gen, int stage_complete, char *err, size_t errsz) {
+  const int n = st_ga_def(R->ga)->population;
+  for (int r = 0; r < n; r++) {
+    R->sorted[r] = *st_ga_genome(R->ga, st_ga_ranked(R->ga, r));
+    R->sorted_fit[r] = R->fitness[st_ga_ranked(R->ga, r)];
+  }
+  stStatus st = st_genome_set_save(R->path[P_POP], R->sorted, n, R->sorted_fit, NULL, err, errsz);
+  if (!st) st = write_checkpoint(R, gen + 1, 1, R->sorted, n, err, errsz);
+  if (R->def->progress && !st)
+    fprintf(R->def->progress, "evolve: stopped after generation %d (%s); files in %s\n", gen,
+            stage_complete ? "all stages complete" : "generation limit", R->def->out_dir);
+  return st;
+}
+
+/* primitive stages: the evaluated population moves to the next stage unchanged (thesis 2.4),
+ * to be evaluated again there as the next generation; returns 1 when there is none */
+static int next_stage(run *R, int gen, int all, stStatus *st, char *err, size_t errsz) {
+  const int n = st_ga_def(R->ga)->population;
+  if (R->def->progress)
+    fprintf(R->def->progress, "evolve: %s complete at generation %d (%d genotypes solve all 16 trials)\n",
+            stage_label(R), gen, all);
+  if (R->stage_idx + 1 >= R->nstages) return 1;
+  R->stage_idx++;
+  R->stage_gen = 0;
+  stGenome *same = malloc(sizeof *same * (size_t)n);
+  for (int i = 0; i < n; i++) same[i] = *st_ga_genome(R->ga, i);
+  *st = st_ga_restore(R->ga, gen + 1, same, n, err, errsz);
+  free(same);
+  return 0;
+}
+
+/* breeds the next generation and checkpoints it */
+static stStatus breed(run *R, int stage_complete, char *err, size_t errsz) {
+  const int n = st_ga_def(R->ga)->population;
+  stStatus st = stage_complete ? ST_OK : st_ga_next(R->ga);
+  if (st) return st;
+  stGenome *pop = malloc(sizeof *pop * (size_t)n);
+  for (int i = 0; i < n; i++) pop[i] = *st_ga_genome(R->ga, i);
+  st = write_checkpoint(R, st_ga_generation(R->ga), 0, pop, n, err, errsz);
+  free(pop);
+  return st;
+}
+
+/* one generation: evaluate, record, then the next stage, the end, or the next generation;
+ * sets *stop when the run is over */
+static stStatus generation(run *R, int *stop, char *err, size_t errsz) {
+  const int gen = st_ga_generation(R->ga);
+  stStatus st = evaluate(R, gen, err, errsz);
+  if (st) return st;
+  st_ga_tell(R->ga, R->fitness);
+  const genStats s = gen_stats(R);
+  if ((st = write_records(R, gen, &s, err, errsz))) return st;
+  R->done_here++;
+  R->stage_gen++;
+  progress(R, gen, &s);
+  /* the integrated stage always runs its generations (thesis 2.4) */
+  const int stage_complete = !R->integrated && s.all >= R->cfg->ga_success_genotypes;
+  *stop = stage_complete && next_stage(R, gen, s.all, &st, err, errsz);
+  if (gen + 1 >= R->limit) *stop = 1;
+  if (st) return st;
+  if (*stop) return finish(R, gen, stage_complete, err, errsz);
+  return breed(R, stage_complete, err, errsz);
+}
+
+/* ---- the run ---- */
+
+/* which stages (every key acts in them or keeps its default), how many generations, how many
+ * threads */
+static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz) {
+  const stConfig *cfg = def->cfg;
+  const unsigned stages = st_config_run_stages(cfg);
+  stStatus st = st_config_check_stages(cfg, stages, err, errsz);
+  if (st) return st;
+  /* the integrated stage runs alone (from the primitive stages' saved populations) */
+  R->integrated = stages == ST_CONFIG_INTEGRATED;
+  if (!stages || (!R->integrated && (stages & ST_CONFIG_INTEGRATED))) {
+    st__errf(err, errsz, "key 'stage.stages': %s is no stage sequence this program runs (expected "
+             "simple_prim, main_prim, prims or integrated)",
+             st_config_enum_name("stage", "stages", cfg->stage_stages));
+    return ST_ERR_ARG;
+  }
+  if (stages & ST_CONFIG_SIMPLE_PRIM) R->stages[R->nstages++] = ST_STAGE_SIMPLE;
+  if (stages & ST_CONFIG_MAIN_PRIM) R->stages[R->nstages++] = ST_STAGE_MAIN;
+  if (R->integrated) R->stages[R->nstages++] = ST_STAGE_MAIN; /* dynamic, like main-prim */
+  st_integrated_def_from_config(cfg, &R->idef);
+  const int cap = R->integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations;
+  R->limit = def->generations > 0 ? def->generations : cap;
+  R->threads = def->threads > 0 ? def->threads : cfg->run_threads > 0 ? cfg->run_threads : omp_get_num_procs();
+  return ST_OK;
+}
+
+/* resuming: the checkpoint, validated against this run's configuration and files before
+ * anything in the directory changes */
+static stStatus read_resume(run *R, stCheckpoint *ck, char *err, size_t errsz) {
+  stStatus st = same_config(R, err, errsz);
+  if (st) return st;
+  const stCheckpointRun cr = checkpoint_run(R);
+  st = st__checkpoint_read(R->path[P_CKPT], &cr, R->path[P_CSV], R->path[P_BEST], ck, err, errsz);
+  if (st) return st;
+  if (ck->done && R->def->progress)
+    fprintf(R->def->progress, "evolve: the run in %s is complete\n", R->def->out_dir);
+  R->stage_idx = ck->stage_idx;
+  R->stage_gen = ck->stage_gen;
+  return ST_OK;
+}
+
+/* the GA from the checkpoint's population (resuming) or the stage's initial one */
+static stStatus start_population(run *R, const stCheckpoint *ck, int have_ckpt, char *err,
+                                 size_t errsz) {
+  stGenomeSet init;
+  memset(&init, 0, sizeof init);
+  stStatus st = ST_OK;
+  if (!have_ckpt)
+    st = R->integrated ? assemble_initial(R, &init, err, errsz) : load_initial(R, &init, err, errsz);
+  if (st) return st;
+  const stGenome *pop0 = have_ckpt ? ck->pop.genome : init.count ? init.genome : NULL;
+  const int npop0 = have_ckpt ? ck->pop.count : init.count;
+  st = make_ga(R, pop0, npop0, err, errsz);
+  if (!st && have_ckpt) st = st_ga_restore(R->ga, ck->generation, ck->pop.genome, ck->pop.count, err, errsz);
+  st_genome_set_free(&init);
+  return st;
+}
+
+/* resuming: fitness.csv and best.genome cut back to the checkpoint's generation (the rows of
+ * the unfinished generation are redone); the last step before the first generation */
+static stStatus rewind_files(run *R, const stCheckpoint *ck, char *err, size_t errsz) {
+  if (truncate(R->path[P_CSV], (off_t)ck->csv_bytes) != 0 ||
+      truncate(R->path[P_BEST], (off_t)ck->best_bytes) != 0) {
+    st__errf(err, errsz, "cannot resume: %s: %s", R->def->out_dir, strerror(errno));
+    return ST_ERR_IO;
+  }
+  return ST_OK;
+}
+
+static stStatus allocate(run *R, char *err, size_t errsz) {
+  const size_t n = (size_t)R->cfg->ga_population;
+  R->ws = calloc((size_t)R->threads, sizeof *R->ws);
+  R->eval = calloc(n, sizeof *R->eval);
+  R->ieval = calloc(n, sizeof *R->ieval);
+  R->fitness = calloc(n, sizeof *R->fitness);
+  R->sorted = calloc(n, sizeof *R->sorted);
+  R->sorted_fit = calloc(n, sizeof *R->sorted_fit);
+  R->tasks = calloc(n, sizeof *R->tasks);
+  R->results = calloc(n, sizeof *R->results);
+  if (R->ws && R->eval && R->ieval && R->fitness && R->sorted && R->sorted_fit && R->tasks &&
+      R->results)
+    return ST_OK;
+  st__errf(err, errsz, "evolve: out of memory");
+  return ST_ERR_NOMEM;
+}
+
+static void release(run *R) {
+  for (int t = 0; R->ws && t < R->threads; t++) st_workspace_free(&R->ws[t]);
+  free(R->ws);
+  free(R->eval);
+  free(R->ieval);
+  free(R->fitness);
+  free(R->sorted);
+  free(R->sorted_fit);
+  free(R->tasks);
+  free(R->results);
+  st_ga_destroy(R->ga);
+  st_protocol_destroy(R->proto);
+}
+
+stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
+  run R;
+  memset(&R, 0, sizeof R);
+  R.def = def;
+  R.cfg = def->cfg;
+  stStatus st = st_config_validate(def->cfg, err, errsz);
+  if (st) return st;
+  if ((st = plan_run(&R, def, err, errsz))) return st;
+  if ((st = prepare_dir(&R, err, errsz))) return st;
+  stCheckpoint ck;
+  memset(&ck, 0, sizeof ck);
+  const int have_ckpt = def->resume && file_size(R.path[P_CKPT]) >= 0;
+  if (def->resume && !have_ckpt && def->progress)
+    fprintf(def->progress, "evolve: no checkpoint in %s: starting fresh\n", def->out_dir);
+  if (have_ckpt) st = read_resume(&R, &ck, err, errsz);
+  const int todo = !st && !ck.done;
+  if (todo) st = start_population(&R, &ck, have_ckpt, err, errsz);
+  if (todo && !st) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
+  if (todo && !st) st = allocate(&R, err, errsz);
+  if (todo && !st) st = have_ckpt ? rewind_files(&R, &ck, err, errsz) : start_files(&R, err, errsz);
+  st__checkpoint_free(&ck);
+  R.t_start = now();
+  for (int stop = !todo; !st && !stop;) st = generation(&R, &stop, err, errsz);
+  release(&R);
+  return st;
+}

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# make replicate end to end (tools/replicate.mk, PRESET=tiny: 2 runs of every step, a few
+# generations, tiny post-evaluations): every step's files and report.md appear; a replication
+# killed in the middle of its integrated runs continues, when started again, to the same files
+# as one never stopped; bad presets and steps are refused.
+set -uo pipefail
+CHECK=check_replicate
+. "$(dirname "$0")/check_lib.sh"
+REP="make --no-print-directory -s -f tools/replicate.mk PRESET=tiny THREADS=1"
+
+# the uninterrupted replication
+if $REP OUT="$tmp/a" > "$tmp/a.out" 2>&1; then ok "PRESET=tiny runs every step"; else
+  ko "PRESET=tiny runs every step" "$(tail -5 "$tmp/a.out")"; fi
+missing=""
+for f in prims-s1/population.genome prims-s2/population.genome \
+  posteval/integration/summary.csv int-stct-s1/population.genome int-ni-s2/population.genome \
+  posteval/robustness-ct/summary.csv posteval/generalisation-st0/trials.csv \
+  stats/table_3_1.txt stats/table_3_2.txt stats/table_3_3.txt stats/selftalk.csv \
+  figures/fig3_1.png figures/fig3_3.png figures/fig3_9.svg figures/fig3_10.png report.md; do
+  [ -s "$tmp/a/$f" ] || missing="$missing $f"
+done
+if [ -z "$missing" ]; then ok "every step's files"; else ko "every step's files" "missing:$missing"; fi
+
+# report.md: every section, the thesis's numbers beside ours
+r="$tmp/a/report.md"
+sections=0
+for h in "## Primitive stages" "## Integration test" "## Integrated stage" "## Robustness test" \
+  "## Generalisation test" "## Self talk against"; do grep -qF "$h" "$r" && sections=$((sections + 1)); done
+if [ $sections = 6 ]; then ok "report.md has its six sections"; else ko "report.md sections" "$sections of 6"; fi
+# Table 3.1 as printed (data/thesis/results.json), the integrated runs of both seeds
+if grep -qF "| ST-CT | - | 24 | 9.5** | 8.5** |" "$r" && grep -qF "| 581 (426, 700) |" "$r" &&
+  [ "$(grep -cE '^\| (ST-CT|ST|CT|NI) \| [12] \| 2 \| [0-9.]+ \|.* [0-4]/4 \|$' "$r")" = 8 ]; then
+  ok "report.md: the thesis's Table 3.1 and quartiles, our 8 integrated runs of 2 generations"
+else ko "report.md content"; fi
+
+# killed while its integrated runs evolve, then started again: the same files
+setsid $REP OUT="$tmp/b" > "$tmp/b.out" 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do
+  [ -e "$tmp/b/int-stct-s1/checkpoint" ] && break
+  kill -0 $pid 2> /dev/null || break
+  sleep 0.1
+done
+kill -TERM -- -$pid 2> /dev/null
+wait $pid 2> /dev/null
+if [ -e "$tmp/b/int-stct-s1/checkpoint" ] && [ ! -e "$tmp/b/report.md" ]; then
+  ok "killed during the integrated runs"
+else ko "killed during the integrated runs" "report exists or no integrated checkpoint"; fi
+if $REP OUT="$tmp/b" > "$tmp/b2.out" 2>&1; then ok "started again, it completes"; else
+  ko "started again, it completes" "$(tail -5 "$tmp/b2.out")"; fi
+# files name their directory (config.ini's integrated.populations, report.md): compared with it
+# replaced; pictures are left out (matplotlib's PNG is not byte-stable)
+diffs=$(cd "$tmp/a" && find . -type f ! -name '*.log' ! -name '*.png' ! -name '*.svg' | sort |
+  while read -r f; do
+    cmp -s <(sed "s|$tmp/a|OUT|g" "$f") <(sed "s|$tmp/b|OUT|g" "$tmp/b/$f" 2> /dev/null) || echo "$f"
+  done)
+if [ -z "$diffs" ]; then ok "the resumed replication's files equal the uninterrupted one's"; else
+  ko "resumed replication" "differ: $(echo $diffs)"; fi
+
+# refusals
+$REP OUT="$tmp/c" PRESET=huge > /dev/null 2> "$tmp/e"
+if [ $? != 0 ] && grep -q "PRESET=huge: expected full, small or tiny" "$tmp/e"; then
+  ok "an unknown preset is refused"; else ko "unknown preset" "$(cat "$tmp/e")"; fi
+if ! $REP jobs STEP=everything > /dev/null 2> "$tmp/e" && grep -q "STEP=prims" "$tmp/e"; then
+  ok "an unknown step is refused"; else ko "unknown step"; fi
+if [ "$($REP jobs STEP=integrated OUT=x | wc -l)" = 8 ]; then ok "jobs STEP=integrated lists 4 conditions x 2 runs"; else
+  ko "jobs STEP=integrated"; fi
+
+echo "$CHECK: $pass passed, $fail failed"
+[ $fail = 0 ]

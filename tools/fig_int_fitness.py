@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Thesis Figs. 3.5-3.8: the fitness of the best individual in every generation of integrated
+runs of one condition, one colour per run: total fitness solid, total bonus dotted, the bonus of
+the trials without the caretaker (self talk or no words) dashed.
+
+    /usr/bin/python3 tools/fig_int_fitness.py RUN [RUN...] [--label NAME]... [--title T] [-o fig3_5.png]...
+
+RUN is an `evolve --out` directory of configs/integrated_*.cfg (or its fitness.csv): columns
+generation, best, best_bonus, best_bonus_auto (docs/PROTOCOL.md, "Runs"). Default outputs
+fig3_5.png and fig3_5.svg.
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import figlib  # noqa: E402
+
+figlib.PROG = "fig_int_fitness"
+COLUMNS = {"generation": "int", "best": "float", "best_bonus": "float", "best_bonus_auto": "float"}
+COLOURS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf"]
+
+
+def load(arg):
+    path = arg if arg.endswith(".csv") and not os.path.isdir(arg) else os.path.join(arg, "fitness.csv")
+    return path, figlib.read_csv(path, COLUMNS, "an integrated run's fitness.csv")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--label", action="append", default=[], help="legend name, one per run")
+    ap.add_argument("--title", default="integrated stage: the best individual of every generation")
+    figlib.add_out_argument(ap, "fig3_5")
+    a = ap.parse_args()
+    outs = figlib.outputs(a, "fig3_5")
+    if a.label and len(a.label) != len(a.runs):
+        figlib.die(f"{len(a.label)} --label for {len(a.runs)} runs (expected one per run)")
+    runs = [load(r) for r in a.runs]
+    for path, rows in runs:
+        print(f"{figlib.PROG}: {path}: {len(rows)} generations, best {max(r['best'] for r in rows):.6g}, "
+              f"last bonus {rows[-1]['best_bonus']:g} (without the caretaker {rows[-1]['best_bonus_auto']:g})")
+    plt = figlib.pyplot()
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    for i, (path, rows) in enumerate(runs):
+        c, name = COLOURS[i % len(COLOURS)], a.label[i] if a.label else path
+        gs = [r["generation"] for r in rows]
+        ax.plot(gs, [r["best"] for r in rows], color=c, lw=1.3, label=f"{name}: fitness")
+        ax.plot(gs, [r["best_bonus"] for r in rows], color=c, lw=1.0, ls=":", label=f"{name}: bonus")
+        ax.plot(gs, [r["best_bonus_auto"] for r in rows], color=c, lw=1.0, ls="--",
+                label=f"{name}: bonus without the caretaker")
+    ax.set_xlabel("generation")
+    ax.set_ylabel("fitness")
+    ax.set_title(a.title, fontsize=10)
+    ax.grid(True, color="#eee")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
+    fig.tight_layout()
+    figlib.save(plt, fig, outs)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Thesis Fig. 3.3: the integration test (§2.10.1, §3.1.1) - how many individuals succeeded in
+how many of its caretaker-guided trials, one bar colour per condition (the thesis: the
+incremental runs, simple-prim then main-prim, against the non-incremental ones, main-prim only).
+
+    /usr/bin/python3 tools/fig_integration.py SUMMARY.csv [--bin 5] [-o fig3_3.png]...
+
+SUMMARY.csv is the post-evaluation summary (docs/PROTOCOL.md, "Post-evaluation files"): one row
+per individual, test,condition,run,individual,successes,trials,excluded,open_jumped; the rows of
+test "integration" are drawn (the others are skipped), their conditions free names (e.g.
+incremental, nonincremental). Every individual of the test has the same number of trials (40);
+none is excluded. The bars count the individuals whose successes fall in each bin of --bin
+trials (the last bin closed: 35-40 of 40 with the default 5). Prints, per condition, n, median,
+quartiles (definition 7, as ./apps/stats), extremes and the counts per bin, then the same
+statistics of open_jumped over all individuals (the thesis: median 30 of 40, quartiles 20.25
+and 35) and per condition. Default outputs fig3_3.png and fig3_3.svg.
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import figlib  # noqa: E402
+
+figlib.PROG = "fig_integration"
+COLUMNS = {"test": "str", "condition": "str", "run": "int", "individual": "int", "successes": "int",
+           "trials": "int", "excluded": "int", "open_jumped": "int"}
+TEST = "integration"
+COLOURS = ["#4c72b0", "#dd8452", "#55a868", "#c44e52", "#8172b3", "#937860"]
+
+
+def check_row(path, r, first):
+    """one integration row: counts in range, the same trials as the first row, none excluded"""
+    n = f"{path}:{r['_line']}"
+    if r["trials"] < 1 or not 0 <= r["successes"] <= r["trials"]:
+        figlib.die(f"{n}: successes {r['successes']} of {r['trials']} trials (expected 0 <= "
+                   "successes <= trials, trials >= 1)")
+    if not 0 <= r["open_jumped"] <= r["trials"]:
+        figlib.die(f"{n}: open_jumped {r['open_jumped']} of {r['trials']} trials (expected 0..trials)")
+    if r["excluded"] != 0:
+        figlib.die(f"{n}: excluded {r['excluded']} (expected 0: the integration test excludes no one)")
+    if r["trials"] != first["trials"]:
+        figlib.die(f"{n}: {r['trials']} trials (expected {first['trials']}, as line {first['_line']}: "
+                   "every individual of the test has the same trials)")
+
+
+def load(path):
+    """the integration rows, checked; duplicates of (condition, run, individual) refused"""
+    rows = [r for r in figlib.read_csv(path, COLUMNS, "a post-evaluation summary") if r["test"] == TEST]
+    if not rows:
+        figlib.die(f"{path}: no rows of test '{TEST}' (expected the integration test's summary rows)")
+    seen = {}
+    for r in rows:
+        check_row(path, r, rows[0])
+        key = (r["condition"], r["run"], r["individual"])
+        if key in seen:
+            figlib.die(f"{path}:{r['_line']}: {r['condition']} run {r['run']} individual "
+                       f"{r['individual']} again (expected one row per individual; first at line {seen[key]})")
+        seen[key] = r["_line"]
+    return rows
+
+
+def bins(trials, width):
+    """[(lo, hi)] covering 0..trials, width trials each, the last closed (35-40 of 40 by 5)"""
+    edges = list(range(0, trials + 1, width))
+    if len(edges) > 1 and trials - edges[-1] + 1 < width:
+        edges.pop()  # a short remainder joins the last full bin
+    return [(lo, (edges[i + 1] - 1) if i + 1 < len(edges) else trials) for i, lo in enumerate(edges)]
+
+
+def label(b):
+    return f"{b[0]}-{b[1]}" if b[1] > b[0] else f"{b[0]}"
+
+
+def counts(xs, bs):
+    return [sum(lo <= x <= hi for x in xs) for lo, hi in bs]
+
+
+def stats(xs):
+    q1, med, q3 = figlib.quartiles(xs)
+    return f"n={len(xs)} median={med:g} q1={q1:g} q3={q3:g} min={min(xs)} max={max(xs)}"
+
+
+def report(rows, conds, bs):
+    for c in conds:
+        xs = [r["successes"] for r in rows if r["condition"] == c]
+        per = " ".join(f"{label(b)}:{k}" for b, k in zip(bs, counts(xs, bs)))
+        print(f"{figlib.PROG}: {c}: successes {stats(xs)}")
+        print(f"{figlib.PROG}: {c}: individuals per bin {per}")
+    print(f"{figlib.PROG}: open jumped, all: {stats([r['open_jumped'] for r in rows])}")
+    for c in conds:
+        print(f"{figlib.PROG}: open jumped, {c}: "
+              f"{stats([r['open_jumped'] for r in rows if r['condition'] == c])}")
+
+
+def draw(plt, rows, conds, bs, trials):
+    fig, ax = plt.subplots(figsize=(max(5.5, 0.3 * len(bs) * len(conds) + 2.5), 3.8))
+    width = 0.8 / len(conds)
+    for i, c in enumerate(conds):
+        xs = [r["successes"] for r in rows if r["condition"] == c]
+        med = figlib.quartiles(xs)[1]
+        pos = [b + (i - (len(conds) - 1) / 2) * width for b in range(len(bs))]
+        ax.bar(pos, counts(xs, bs), width, color=COLOURS[i % len(COLOURS)],
+               label=f"{c} (n = {len(xs)}, median {med:g})")
+    ax.set_xticks(range(len(bs)))
+    ax.set_xticklabels([label(b) for b in bs], fontsize=8, rotation=90 if len(bs) > 12 else 0)
+    ax.set_xlabel(f"successful trials (of {trials})")
+    ax.set_ylabel("individuals")
+    ax.yaxis.get_major_locator().set_params(integer=True)
+    ax.set_title("integration test", fontsize=10)
+    ax.grid(True, axis="y", color="#eee")
+    ax.set_axisbelow(True)
+    ax.legend(fontsize=8, frameon=False)
+    fig.tight_layout()
+    return fig
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("summary")
+    ap.add_argument("--bin", type=int, default=5, help="trials per bar (default 5)")
+    figlib.add_out_argument(ap, "fig3_3")
+    a = ap.parse_args()
+    outs = figlib.outputs(a, "fig3_3")
+    rows = load(a.summary)
+    trials = rows[0]["trials"]
+    if not 1 <= a.bin <= trials:
+        figlib.die(f"--bin {a.bin}: expected 1..{trials} (the test's trials)")
+    conds = figlib.ordered(r["condition"] for r in rows)
+    bs = bins(trials, a.bin)
+    report(rows, conds, bs)
+    plt = figlib.pyplot()
+    figlib.save(plt, draw(plt, rows, conds, bs, trials), outs)
+
+
+if __name__ == "__main__":
+    main()

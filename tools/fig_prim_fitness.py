@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Thesis Fig. 3.1: main (the best individual's), bonus and average fitness of primitive runs
+over the simple-prim and main-prim generations, one panel per run, the maximum possible bonus
+dotted, the stage change marked.
+
+    /usr/bin/python3 tools/fig_prim_fitness.py RUN [RUN...] [--label NAME]... [-o fig3_1.png]...
+
+RUN is an `evolve --out` directory of configs/prims.cfg (or its fitness.csv): columns
+generation, best, mean, best_bonus, stage and best_t0.. (docs/PROTOCOL.md, "Evolution runs").
+The maximum bonus is fitness.bonus (config.ini beside fitness.csv; 10 without one) times the
+number of best_tI columns (16: 160). Default outputs fig3_1.png and fig3_1.svg.
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import figlib  # noqa: E402
+
+figlib.PROG = "fig_prim_fitness"
+COLUMNS = {"generation": "int", "best": "float", "mean": "float", "best_bonus": "float",
+           "stage": "str"}
+
+
+def config_bonus(run_dir):
+    """fitness.bonus of the run's config.ini, 10 (the thesis's) without one"""
+    section = None
+    try:
+        with open(os.path.join(run_dir, "config.ini")) as f:
+            for n, line in enumerate(f, start=1):
+                line = line.split("#")[0].split(";")[0].strip()
+                if line.startswith("["):
+                    section = line.strip("[]").strip()
+                elif section == "fitness" and line.replace(" ", "").startswith("bonus="):
+                    try:
+                        return float(line.split("=", 1)[1])
+                    except ValueError:
+                        figlib.die(f"{f.name}:{n}: fitness.bonus '{line}' (expected a number)")
+    except OSError:
+        pass
+    return 10.0
+
+
+def load(arg):
+    path = arg if arg.endswith(".csv") and not os.path.isdir(arg) else os.path.join(arg, "fitness.csv")
+    rows = figlib.read_csv(path, COLUMNS, "a primitive run's fitness.csv")
+    ntrials = sum(1 for k in rows[0] if k.startswith("best_t"))
+    return {"path": path, "rows": rows, "max_bonus": config_bonus(os.path.dirname(path)) * ntrials,
+            "changes": [r["generation"] for a, r in zip(rows, rows[1:]) if r["stage"] != a["stage"]]}
+
+
+def panel(ax, run, label):
+    gs = [r["generation"] for r in run["rows"]]
+    ax.plot(gs, [r["best"] for r in run["rows"]], color="#1f77b4", lw=1.2, label="main (best)")
+    ax.plot(gs, [r["best_bonus"] for r in run["rows"]], color="#d62728", lw=1.0, label="bonus")
+    ax.plot(gs, [r["mean"] for r in run["rows"]], color="#7f7f7f", lw=1.0, label="average")
+    ax.axhline(run["max_bonus"], color="#d62728", ls=":", lw=1.0, label="maximum bonus")
+    for g in run["changes"]:
+        ax.axvline(g - 0.5, color="#555", ls="--", lw=0.8)
+        ax.text(g, run["max_bonus"], " main-prim", fontsize=8, va="bottom")
+    ax.set_title(label, fontsize=10)
+    ax.set_ylabel("fitness")
+    ax.set_xlim(gs[0], max(gs[-1], gs[0] + 1))
+    ax.grid(True, color="#eee")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--label", action="append", default=[], help="panel title, one per run")
+    figlib.add_out_argument(ap, "fig3_1")
+    a = ap.parse_args()
+    outs = figlib.outputs(a, "fig3_1")
+    if a.label and len(a.label) != len(a.runs):
+        figlib.die(f"{len(a.label)} --label for {len(a.runs)} runs (expected one per run)")
+    runs = [load(r) for r in a.runs]
+    for run in runs:
+        last = run["rows"][-1]
+        print(f"{figlib.PROG}: {run['path']}: {len(run['rows'])} generations, stage changes at "
+              f"{run['changes'] or 'none'}, last best {last['best']:.6g} bonus {last['best_bonus']:g}"
+              f" of {run['max_bonus']:g}")
+    plt = figlib.pyplot()
+    fig, axes = plt.subplots(len(runs), 1, figsize=(9.5, 2.8 * len(runs) + 0.4), squeeze=False)
+    for i, run in enumerate(runs):
+        panel(axes[i][0], run, a.label[i] if a.label else run["path"])
+    axes[-1][0].set_xlabel("generation")
+    fig.tight_layout()
+    figlib.save(plt, fig, outs)
+
+
+if __name__ == "__main__":
+    main()

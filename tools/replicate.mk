@@ -1,0 +1,175 @@
+# The whole study (thesis §2.4-§3), one file per step, as make targets: a killed replication
+# continues where it stopped (every job writes its result atomically and evolve resumes from its
+# checkpoint), and every step's jobs are independent (`make -j`, or one cluster job each:
+# `make -f tools/replicate.mk jobs STEP=prims` lists them; README.md, "Replicating the study").
+#
+#   make replicate [PRESET=small] [RUNS=N] [OUT=DIR] [THREADS=N]      (top-level Makefile)
+#   make -f tools/replicate.mk [target] [the same variables]
+#
+# Steps and their files (under OUT):
+#   prims       prims-s<N>/population.genome       configs/prims.cfg, seeds 1..RUNS
+#   integration posteval/integration/summary.csv   top 10 of each primitive run, caretaker words
+#   integrated  int-<cond>-s<N>/population.genome  4 conditions x RUNS seeds, assembled from the
+#                                                  primitive runs (integrated.populations)
+#   robustness  posteval/robustness-<cond>/        the best of each integrated run
+#   generalisation posteval/generalisation-<cond>/ (and -stct0, -st0: the caretaker's words)
+#   stats       stats/*.txt, *.csv                 ./apps/stats: Tables 3.1-3.3, descriptions
+#   figures     figures/*.png, *.svg               tools/fig_*.py
+#   report      report.md                          tools/replicate_report.py: ours beside the thesis
+#
+# PRESET=small is a quick look (2 runs, capped generations, reduced post-evaluations): it shows
+# every step working in well under an hour, not the thesis's results.
+
+PRESET ?= full
+OUT ?= runs/replicate
+THREADS ?= 0
+PYTHON ?= /usr/bin/python3
+
+# Arguments of each step's commands (a key either acts in a command or is refused, so each
+# post-evaluation test has its own).
+ifeq ($(PRESET),full)
+RUNS ?= 10
+else ifeq ($(PRESET),small)
+RUNS ?= 2
+PRIM_ARGS ?= --generations 40
+INT_ARGS ?= --generations 3
+INTEG_ARGS ?= --set posteval.integration_top=2 --set posteval.integration_trials=8
+ROB_ARGS ?= --set posteval.robustness_trials=8
+GEN_ARGS ?= --set posteval.generalisation_cells=3 --set posteval.generalisation_repetitions=1
+else ifeq ($(PRESET),tiny)
+# the end-to-end test (tests/check_replicate.sh): every step, seconds each, meaningless numbers
+RUNS ?= 2
+GA_TINY := --set ga.population=20 --set ga.elites=2 --set ga.parents=4
+PRIM_ARGS ?= --generations 2 $(GA_TINY)
+INT_ARGS ?= --generations 2 $(GA_TINY) --set integrated.trials=4 --set integrated.steps=20
+INTEG_ARGS ?= --set posteval.integration_top=2 --set posteval.integration_trials=4
+FIG3_3_ARGS ?= --bin 1
+ROB_ARGS ?= --set posteval.robustness_trials=4
+GEN_ARGS ?= --set posteval.generalisation_cells=2 --set posteval.generalisation_repetitions=1 \
+  --set posteval.generalisation_steps=20
+else
+$(error PRESET=$(PRESET): expected full, small or tiny)
+endif
+
+comma := ,
+empty :=
+space := $(empty) $(empty)
+CONDS := stct st ct ni
+# the caretaker variants of the generalisation test (thesis §3.2.5: ST-CT0, ST0)
+CONDS0 := stct st
+SEEDS := $(shell seq 1 $(RUNS))
+EVOLVE := ./apps/evolve
+POSTEVAL := ./apps/posteval
+STATS := ./apps/stats
+THREADS_ARG := $(if $(filter-out 0,$(THREADS)),--threads $(THREADS))
+
+PRIM_POPS := $(SEEDS:%=$(OUT)/prims-s%/population.genome)
+INT_POPS := $(foreach c,$(CONDS),$(SEEDS:%=$(OUT)/int-$(c)-s%/population.genome))
+POST_INTEG := $(OUT)/posteval/integration/summary.csv
+POST_ROB := $(CONDS:%=$(OUT)/posteval/robustness-%/summary.csv)
+POST_GEN := $(CONDS:%=$(OUT)/posteval/generalisation-%/summary.csv) \
+  $(CONDS0:%=$(OUT)/posteval/generalisation-%0/summary.csv)
+SUMMARIES := $(OUT)/summary/integration.csv $(OUT)/summary/robustness.csv \
+  $(OUT)/summary/generalisation.csv $(OUT)/summary/generalisation-trials.csv
+STATS_OUT := $(OUT)/stats/table_3_1.txt $(OUT)/stats/table_3_2.txt $(OUT)/stats/table_3_3.txt \
+  $(OUT)/stats/integration.txt $(OUT)/stats/robustness.txt $(OUT)/stats/generalisation.txt \
+  $(OUT)/stats/selftalk.csv
+REPORT := $(OUT)/report.md
+
+.PHONY: all prims integration integrated robustness generalisation stats figures report jobs
+.DELETE_ON_ERROR:
+# a step's files stay when a later step fails: they are results
+.SECONDARY:
+
+all: report
+prims: $(PRIM_POPS)
+integration: $(POST_INTEG)
+integrated: $(INT_POPS)
+robustness: $(POST_ROB)
+generalisation: $(POST_GEN)
+stats: $(STATS_OUT)
+figures: $(OUT)/figures/.done
+report: $(REPORT)
+
+# the targets of one step, one per line: a cluster job array runs line $TASK_ID
+jobs:
+	@$(if $(filter prims,$(STEP)),printf '%s\n' $(PRIM_POPS),$(if $(filter integrated,$(STEP)),printf '%s\n' $(INT_POPS),$(if $(filter robustness,$(STEP)),printf '%s\n' $(POST_ROB),$(if $(filter generalisation,$(STEP)),printf '%s\n' $(POST_GEN),echo "jobs: STEP=prims, integrated, robustness or generalisation" >&2; exit 2))))
+
+# ---- evolution: --resume continues a killed run to the identical files (or starts it)
+$(OUT)/prims-s%/population.genome:
+	@mkdir -p $(OUT)
+	$(EVOLVE) configs/prims.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(PRIM_ARGS) > $(@D).log
+
+# every integrated run starts from the same assembled genotypes: the top 10 of each primitive run
+$(OUT)/int-%/population.genome: $(PRIM_POPS)
+	$(EVOLVE) configs/integrated_$(word 1,$(subst -s, ,$*)).cfg --seed $(lastword $(subst -s, ,$*)) \
+	  --out $(@D) --resume $(THREADS_ARG) $(INT_ARGS) \
+	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIM_POPS))) > $(@D).log
+
+
+# ---- post-evaluation (each writes DIR/trials.csv and DIR/summary.csv atomically)
+$(POST_INTEG): $(PRIM_POPS)
+	$(POSTEVAL) integration configs/prims.cfg $(PRIM_POPS) --out $(@D) $(THREADS_ARG) $(INTEG_ARGS)
+
+$(OUT)/posteval/robustness-%/summary.csv: $(INT_POPS)
+	$(POSTEVAL) robustness configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
+	  --out $(@D) $(THREADS_ARG) $(ROB_ARGS)
+
+$(OUT)/posteval/generalisation-%0/summary.csv: $(INT_POPS)
+	$(POSTEVAL) generalisation configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
+	  --caretaker --out $(@D) $(THREADS_ARG) $(GEN_ARGS)
+
+$(OUT)/posteval/generalisation-%/summary.csv: $(INT_POPS)
+	$(POSTEVAL) generalisation configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
+	  --out $(@D) $(THREADS_ARG) $(GEN_ARGS)
+
+# posteval writes trials.csv with summary.csv
+$(OUT)/posteval/%/trials.csv: $(OUT)/posteval/%/summary.csv
+	@test -f $@
+
+# ---- one file per test, the conditions together (header once)
+define concat
+	@mkdir -p $(@D)
+	awk 'FNR > 1 || NR == 1' $^ > $@.tmp && mv $@.tmp $@
+endef
+$(OUT)/summary/integration.csv: $(POST_INTEG)
+	$(concat)
+$(OUT)/summary/robustness.csv: $(POST_ROB)
+	$(concat)
+$(OUT)/summary/generalisation.csv: $(POST_GEN)
+	$(concat)
+$(OUT)/summary/generalisation-trials.csv: $(POST_GEN:summary.csv=trials.csv)
+	$(concat)
+
+# ---- statistics (./apps/stats): stdout to a file, moved into place when complete
+$(OUT)/stats/table_3_1.txt: $(OUT)/summary/robustness.csv
+	@mkdir -p $(@D)
+	$(STATS) table $< --test robustness > $@.tmp && mv $@.tmp $@
+$(OUT)/stats/table_3_2.txt: $(OUT)/summary/generalisation.csv
+	@mkdir -p $(@D)
+	$(STATS) table $< --test generalisation > $@.tmp && mv $@.tmp $@
+$(OUT)/stats/selftalk.csv: $(OUT)/summary/generalisation-trials.csv
+	@mkdir -p $(@D)
+	$(STATS) selftalk $< > $@.tmp && mv $@.tmp $@
+$(OUT)/stats/table_3_3.txt: $(OUT)/summary/generalisation-trials.csv
+	@mkdir -p $(@D)
+	$(STATS) times $< > $@.tmp && mv $@.tmp $@
+$(OUT)/stats/%.txt: $(OUT)/summary/%.csv
+	@mkdir -p $(@D)
+	$(STATS) describe $< --test $* > $@.tmp && mv $@.tmp $@
+
+# ---- figures (tools/fig_*.py): PNG and SVG
+FIG = $(PYTHON) tools/$(1).py $(2) -o $(OUT)/figures/$(3).png -o $(OUT)/figures/$(3).svg
+$(OUT)/figures/.done: $(PRIM_POPS) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selftalk.csv
+	@mkdir -p $(@D)
+	$(call FIG,fig_prim_fitness,$(PRIM_POPS:/population.genome=),fig3_1)
+	$(call FIG,fig_integration,$(OUT)/summary/integration.csv $(FIG3_3_ARGS),fig3_3)
+	$(foreach c,$(CONDS),$(call FIG,fig_int_fitness,$(SEEDS:%=$(OUT)/int-$(c)-s%),fig3_int_$(c));)
+	$(call FIG,fig_boxplot,$(OUT)/summary/robustness.csv --test robustness,fig3_4)
+	$(call FIG,fig_boxplot,$(OUT)/summary/generalisation.csv --test generalisation,fig3_9)
+	$(call FIG,fig_success_maps,$(OUT)/summary/generalisation-trials.csv,fig3_10)
+	$(call FIG,fig_selftalk,$(OUT)/stats/selftalk.csv,fig3_11)
+	touch $@
+
+$(REPORT): $(STATS_OUT) $(OUT)/figures/.done
+	$(PYTHON) tools/replicate_report.py $(OUT) --preset $(PRESET) --runs $(RUNS) -o $@

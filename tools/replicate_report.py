@@ -1,0 +1,251 @@
+#!/usr/bin/env python3
+"""replicate_report.py: report.md of a replication (tools/replicate.mk), each of the thesis's
+numbers (data/thesis/results.json) beside ours.
+
+    replicate_report.py OUT [--preset NAME] [--runs N] [-o report.md]
+
+Reads OUT/prims-s*/fitness.csv, OUT/int-<cond>-s*/fitness.csv, OUT/summary/*.csv,
+OUT/stats/*.txt (./apps/stats's tables) and links OUT/figures/*.png. Written atomically."""
+import argparse
+import csv
+import glob
+import json
+import os
+import re
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
+CONDS = [("stct", "ST-CT"), ("st", "ST"), ("ct", "CT"), ("ni", "NI")]
+
+
+def die(msg):
+    print("replicate_report: " + msg, file=sys.stderr)
+    sys.exit(1)
+
+
+def quantile(sorted_x, p):
+    """Hyndman & Fan definition 7, as ./apps/stats (docs/PROTOCOL.md, Quartiles)"""
+    h = (len(sorted_x) - 1) * p
+    j = int(h)
+    if j + 1 >= len(sorted_x):
+        return sorted_x[-1]
+    return sorted_x[j] + (h - j) * (sorted_x[j + 1] - sorted_x[j])
+
+
+def five(xs):
+    """(median, lower quartile, upper quartile) or None"""
+    if not xs:
+        return None
+    s = sorted(xs)
+    return quantile(s, 0.5), quantile(s, 0.25), quantile(s, 0.75)
+
+
+def fmt(x):
+    return "-" if x is None else ("%g" % x)
+
+
+def fmt5(q):
+    return "-" if q is None else "%g (%g, %g)" % q
+
+
+def read_rows(path):
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        die("%s: %s" % (path, e.strerror))
+    if not rows:
+        die("%s: no rows after the header" % path)
+    return rows
+
+
+def run_seed(path):
+    m = re.search(r"-s(\d+)$", os.path.basename(os.path.dirname(path)))
+    return int(m.group(1)) if m else -1
+
+
+def success_genotypes(run_dir):
+    """ga.success_genotypes of the run's config.ini (5 when absent)"""
+    try:
+        with open(os.path.join(run_dir, "config.ini")) as f:
+            for line in f:
+                m = re.match(r"\s*success_genotypes\s*=\s*(\d+)", line)
+                if m:
+                    return int(m.group(1))
+    except OSError:
+        pass
+    return 5
+
+
+def prim_run(path):
+    """one primitive run: generations to complete simple-prim and main-prim (None: not)"""
+    rows = read_rows(path)
+    need = success_genotypes(os.path.dirname(path))
+    simple = [int(r["generation"]) for r in rows if r["stage"] == "simple-prim"]
+    main = [r for r in rows if r["stage"] == "main-prim"]
+    done_simple = simple[-1] if simple and main else None
+    last = rows[-1]
+    done_main = (int(last["generation"]) if main and int(last["all_success"]) >= need else None)
+    return {"seed": run_seed(path), "simple": done_simple, "total": done_main,
+            "generations": int(last["generation"]) + 1,
+            "best_successes": int(last["best_successes"])}
+
+
+def section_prims(out, th):
+    runs = [prim_run(p) for p in sorted(glob.glob(os.path.join(out, "prims-s*", "fitness.csv")))]
+    t = th["primitive_runs"]
+    lines = ["## Primitive stages (thesis §3.1)", "",
+             "| run (seed) | simple-prim complete at | main-prim complete at | main-prim generations | "
+             "generations run | final best: trials solved |", "|---|---|---|---|---|---|"]
+    for r in runs:
+        mp = r["total"] - r["simple"] if r["total"] is not None and r["simple"] is not None else None
+        lines.append("| %d | %s | %s | %s | %d | %d/16 |" % (
+            r["seed"], fmt(r["simple"]), fmt(r["total"]), fmt(mp), r["generations"], r["best_successes"]))
+    simple = five([r["simple"] for r in runs if r["simple"] is not None])
+    total = five([r["total"] for r in runs if r["total"] is not None])
+    done = sum(1 for r in runs if r["total"] is not None)
+    ts, tt = t["simple_prim"], t["total"]
+    lines += ["", "| | thesis | ours |", "|---|---|---|",
+              "| runs completing both stages | %d of %d | %d of %d |" % (t["completed"], t["runs"], done, len(runs)),
+              "| simple-prim complete at: median (quartiles) | %g (%g, %g) | %s |" % (
+                  ts["median"], ts["lower_quartile"], ts["upper_quartile"], fmt5(simple)),
+              "| both stages complete at: median (quartiles) | %g (%g, %g) | %s |" % (
+                  tt["median"], tt["lower_quartile"], tt["upper_quartile"], fmt5(total)),
+              "", "![Fig. 3.1](figures/fig3_1.png)", ""]
+    return lines
+
+
+def summary_by(out, test):
+    path = os.path.join(out, "summary", test + ".csv")
+    if not os.path.exists(path):
+        return None
+    res = {}
+    for r in read_rows(path):
+        pct = 100.0 * int(r["successes"]) / int(r["trials"]) if int(r["trials"]) else 0.0
+        res.setdefault(r["condition"], []).append((int(r["run"]), int(r["individual"]), pct, r))
+    return res
+
+
+def stats_text(out, name):
+    path = os.path.join(out, "stats", name)
+    if not os.path.exists(path):
+        return ["(missing: %s)" % path]
+    with open(path) as f:
+        return [l.rstrip("\n") for l in f if not l.startswith("#")]
+
+
+def thesis_matrix(tab):
+    cols = tab["columns"]
+    lines = ["| U | " + " | ".join(cols) + " |", "|---" * (len(cols) + 1) + "|"]
+    for name in cols:
+        lines.append("| %s | %s |" % (name, " | ".join(tab["rows"][name])))
+    return lines
+
+
+def section_integration(out, th):
+    s = summary_by(out, "integration") or {}
+    rows = [x for v in s.values() for x in v]
+    succ = five([int(x[3]["successes"]) for x in rows])
+    jumped = five([int(x[3]["open_jumped"]) for x in rows])
+    t = th["integration_test"]
+    tj = t["open_jumped"]
+    return ["## Integration test (thesis §3.1.1)", "",
+            "| | thesis | ours |", "|---|---|---|",
+            "| individuals | 100 (top 10 of 10 runs) | %d |" % len(rows),
+            "| successes of 40: median (quartiles) | %g | %s |" % (t["successes_median"], fmt5(succ)),
+            "| trials with open jumped: median (quartiles) | %g (%g, %g) | %s |" % (
+                tj["median"], tj["lower_quartile"], tj["upper_quartile"], fmt5(jumped)),
+            "", "![Fig. 3.3](figures/fig3_3.png)", ""] + stats_text(out, "integration.txt") + [""]
+
+
+def section_integrated(out):
+    lines = ["## Integrated stage (thesis §3.2): the best of each run's last generation", "",
+             "| condition | run (seed) | generations | best | bonus | autonomous bonus | trials solved |",
+             "|---|---|---|---|---|---|---|"]
+    for key, name in CONDS:
+        for p in sorted(glob.glob(os.path.join(out, "int-%s-s*" % key, "fitness.csv"))):
+            r = read_rows(p)[-1]
+            trials = len([c for c in r if re.match(r"best_t\d+$", c)])
+            lines.append("| %s | %d | %d | %s | %s | %s | %s/%d |" % (
+                name, run_seed(p), int(r["generation"]) + 1, "%.1f" % float(r["best"]),
+                r["best_bonus"], r["best_bonus_auto"], r["best_successes"], trials))
+    lines.append("")
+    lines += ["![%s](figures/fig3_int_%s.png)" % (name, key) for key, name in CONDS]
+    return lines + [""]
+
+
+def per_run_table(s, th_tab, conds):
+    lines = ["| condition | thesis: runs 0-9 (median) | ours: runs (median) |", "|---|---|---|"]
+    for c in conds:
+        ours = sorted(s.get(c, []), key=lambda x: (x[0], x[1])) if s else []
+        th = th_tab.get(c)
+        lines.append("| %s | %s (%s) | %s (%s) |" % (
+            c, " ".join("%g" % v for v in th) if th else "-", fmt(five(th)[0]) if th else "-",
+            " ".join("%.1f" % x[2] for x in ours) or "-", fmt(five([x[2] for x in ours])[0]) if ours else "-"))
+    return lines
+
+
+def section_test(out, th, test, title, table, fig, th_table, th_a, conds):
+    s = summary_by(out, test)
+    return (["## %s" % title, "", "Success percentage per individual (Table %s):" % th_a, ""]
+            + per_run_table(s, th["table_" + th_a.lower().replace(".", "")], conds)
+            + ["", "Thesis, Table %s:" % th_table, ""] + thesis_matrix(th["table_" + th_table.replace(".", "_")])
+            + ["", "Ours (`./apps/stats table`):"] + stats_text(out, table) + ["", "Ours, per condition:"]
+            + stats_text(out, test + ".txt") + [""] + ["![%s](figures/%s.png)" % (f, f) for f in fig] + [""])
+
+
+def section_selftalk(out, th):
+    path = os.path.join(out, "stats", "selftalk.csv")
+    better = {}
+    if os.path.exists(path):
+        for r in read_rows(path):
+            if r["better"] == "selftalk":
+                better[r["condition"]] = better.get(r["condition"], 0) + 1
+    t = th["selftalk_better"]
+    t3 = th["table_3_3"]
+    lines = ["## Self talk against the caretaker's words (thesis §3.2.5, Fig. 3.11, Table 3.3)", "",
+             "| condition | thesis: individuals better with self talk | ours |", "|---|---|---|"]
+    for c in ("ST-CT", "ST"):
+        lines.append("| %s | %d of 10 | %d |" % (c, t[c], better.get(c, 0)))
+    lines += ["", "Thesis, Table 3.3 (seconds to the target):", "",
+              "| | " + " | ".join(t3["columns"]) + " |", "|---" * (len(t3["columns"]) + 1) + "|",
+              "| Self talk | " + " | ".join("%.2f" % v for v in t3["self_talk"]) + " |",
+              "| Caretaker | " + " | ".join("%.2f" % v for v in t3["caretaker"]) + " |",
+              "", "Ours (`./apps/stats times`):"] + stats_text(out, "table_3_3.txt")
+    return lines + ["", "![Fig. 3.11](figures/fig3_11.png)", ""]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("out")
+    ap.add_argument("--preset", default="full")
+    ap.add_argument("--runs", type=int, default=0)
+    ap.add_argument("-o", dest="report", default=None)
+    a = ap.parse_args()
+    if not os.path.isdir(a.out):
+        die("%s: not a directory" % a.out)
+    with open(THESIS) as f:
+        th = json.load(f)
+    lines = ["# Replication of the study", "",
+             "Preset `%s`, %d runs per stage and condition, in `%s` (tools/replicate.mk). The "
+             "thesis's numbers come from `data/thesis/results.json`." % (a.preset, a.runs, a.out), ""]
+    if a.preset != "full":
+        lines += ["**A quick look, not a replication:** the `%s` preset caps the generations and "
+                  "shrinks the post-evaluations, so its numbers are not comparable with the "
+                  "thesis's." % a.preset, ""]
+    lines += section_prims(a.out, th) + section_integration(a.out, th) + section_integrated(a.out)
+    lines += section_test(a.out, th, "robustness", "Robustness test (thesis §3.2, Fig. 3.4)",
+                          "table_3_1.txt", ["fig3_4"], "3.1", "A.1", th["conditions"])
+    lines += section_test(a.out, th, "generalisation", "Generalisation test (thesis §3.2.5)",
+                          "table_3_2.txt", ["fig3_9", "fig3_10"], "3.2", "A.2",
+                          th["conditions"] + ["ST-CT0", "ST0"])
+    lines += section_selftalk(a.out, th)
+    report = a.report or os.path.join(a.out, "report.md")
+    with open(report + ".tmp", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(report + ".tmp", report)
+
+
+if __name__ == "__main__":
+    main()
