@@ -8,6 +8,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "selftalk/io.h"
+
 void app_die(const char *prog, const char *fmt, ...) {
   va_list ap;
   fprintf(stderr, "%s: ", prog);
@@ -61,6 +63,16 @@ void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog)
   if (a->config_path && st_config_load(a->config_path, cfg, err, sizeof err)) app_die(prog, "%s", err);
   if (st_config_set_all(cfg, (const char *const *)a->sets, a->nsets, err, sizeof err))
     app_die(prog, "%s", err);
+}
+
+char *app_read_text(const char *prog, const char *path, size_t *len) {
+  char *text, err[1024];
+  size_t n;
+  if (st_file_read(path, ST_FILE_MAX, &text, &n, err, sizeof err) ||
+      st_text_check(path, text, n, err, sizeof err))
+    app_die(prog, "%s", err);
+  if (len) *len = n;
+  return text;
 }
 
 double app_seconds(appClock which) {

@@ -28,6 +28,12 @@ int app_config_arg(appConfigArgs *a, int argc, char **argv, int *i, const char *
 /* Defaults, then the config file (if any), then the overrides; dies on any error. */
 void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog);
 
+/* The whole text file at path through the library's bounded reader (selftalk/io.h:
+ * st_file_read, at most ST_FILE_MAX bytes) with NUL bytes refused (st_text_check); dies naming
+ * the file (and the line of a NUL byte). The text is NUL-terminated after its *len bytes (len
+ * nullable); free() it. */
+char *app_read_text(const char *prog, const char *path, size_t *len);
+
 /* Seconds on one of three clocks: wall (monotonic), the process's CPU, the calling thread's CPU. */
 typedef enum appClock { APP_WALL, APP_PROCESS_CPU, APP_THREAD_CPU } appClock;
 double app_seconds(appClock which);

@@ -23,7 +23,6 @@
 #include <string.h>
 
 #include "app_common.h"
-#include "selftalk/io.h"
 #include "selftalk/prediction.h"
 
 static const char *prog = "score";
@@ -98,18 +97,8 @@ static void parse_row(const char *path, int lineno, char *line, int expect_step,
   add_row(t, (int)word, o);
 }
 
-/* the whole file through the library's bounded reader (selftalk/io.h), NUL bytes refused */
-static char *read_text(const char *path) {
-  char *text, err[1024];
-  size_t len;
-  if (st_file_read(path, ST_FILE_MAX, &text, &len, err, sizeof err) ||
-      st_text_check(path, text, len, err, sizeof err))
-    app_die(prog, "%s", err);
-  return text;
-}
-
 static void read_table(const char *path, table *t) {
-  char *text = read_text(path);
+  char *text = app_read_text(prog, path, NULL);
   int lineno = 0, in_trial = 0;
   /* lines one by one; strtok_r would skip empty lines, which end trials */
   for (char *line = text, *next; line; line = next) {

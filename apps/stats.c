@@ -25,7 +25,8 @@
  * Table 3.3, those times for the individuals significantly (p <= alpha, 0.01) better with self
  * talk; seconds = (reached_step + 1) x robot.control_dt.
  * The CSV formats are docs/PROTOCOL.md's ("Post-evaluation files"). Errors name FILE:LINE and
- * what was expected; exit 2. */
+ * what was expected; exit 2. Files are read through the library's bounded reader (at most
+ * 64 MiB, no NUL bytes). */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <limits.h>
@@ -63,22 +64,12 @@ typedef struct textFile {
   int lineno;
 } textFile;
 
+/* the whole file through the library's bounded reader (app_read_text: at most 64 MiB, no NUL
+ * byte) */
 static void text_open(textFile *t, const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) app_die(prog, "%s: cannot open: %s", path, strerror(errno));
   memset(t, 0, sizeof *t);
   t->path = path;
-  size_t cap = 0;
-  for (;;) {
-    if (t->len + 4096 > cap) t->buf = xrealloc(t->buf, cap = 2 * cap + 8192, 1);
-    const size_t got = fread(t->buf + t->len, 1, cap - t->len - 1, f);
-    t->len += got;
-    if (got == 0) break;
-  }
-  const int bad = ferror(f);
-  fclose(f);
-  if (bad) app_die(prog, "%s: cannot read", path);
-  t->buf[t->len] = 0;
+  t->buf = app_read_text(prog, path, &t->len);
 }
 
 /* the next line without its end and surrounding white space; NULL at the end of the file */
@@ -88,7 +79,6 @@ static char *text_line(textFile *t) {
   const size_t n = nl ? (size_t)(nl - s) : t->len - t->pos;
   t->pos += n + 1;
   t->lineno++;
-  if (memchr(s, 0, n)) app_die(prog, "%s:%d: NUL byte (expected a text file)", t->path, t->lineno);
   s[n] = 0;
   size_t e = n;
   while (e > 0 && strchr(" \t\r\v\f", s[e - 1])) s[--e] = 0;

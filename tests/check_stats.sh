@@ -182,11 +182,13 @@ printf '1\n\n# c\nabc\n' > "$tmp/n1"; fails "mwu: a bad line" "$tmp/n1:4: 'abc' 
 printf '1 2\n' > "$tmp/n2"; fails "mwu: two numbers on a line" "$tmp/n2:1: '1 2' is not a number" "$ST" mwu "$tmp/c0a" "$tmp/n2"
 printf '# only\n\n' > "$tmp/n3"; fails "mwu: no numbers" "$tmp/n3: no numbers (expected one number per line" "$ST" mwu "$tmp/c0a" "$tmp/n3"
 : > "$tmp/n4"; fails "mwu: empty file" "$tmp/n4: no numbers" "$ST" mwu "$tmp/n4" "$tmp/c0a"
-printf '1\n2\0003\n' > "$tmp/n5"; fails "mwu: NUL byte" "$tmp/n5:2: NUL byte (expected a text file)" "$ST" mwu "$tmp/c0a" "$tmp/n5"
+printf '1\n2\0003\n' > "$tmp/n5"; fails "mwu: NUL byte" "$tmp/n5:2: NUL byte at column 2 (expected a text file)" "$ST" mwu "$tmp/c0a" "$tmp/n5"
 printf '1\nnan\n' > "$tmp/n6"; fails "mwu: nan" "$tmp/n6:2: 'nan' is not finite (expected a finite number)" "$ST" mwu "$tmp/c0a" "$tmp/n6"
 printf '1\n-inf\n' > "$tmp/n7"; fails "mwu: -inf" "$tmp/n7:2: '-inf' is not finite" "$ST" mwu "$tmp/c0a" "$tmp/n7"
 printf '1e400\n' > "$tmp/n8"; fails "mwu: overflow" "$tmp/n8:1: '1e400' is not finite" "$ST" mwu "$tmp/c0a" "$tmp/n8"
 fails "mwu: missing file" "$tmp/none: cannot open" "$ST" mwu "$tmp/c0a" "$tmp/none"
+fails "mwu: a file that never ends" "/dev/zero: larger than 64 MiB" timeout 20 "$ST" mwu "$tmp/c0a" /dev/zero
+fails "table: a directory" "$tmp: cannot read: Is a directory" "$ST" table "$tmp"
 fails "mwu: one file" "mwu needs 2 files" "$ST" mwu "$tmp/c0a"
 fails "unknown command" "'frob': unknown command" "$ST" frob "$tmp/c0a"
 fails "--exact-max out of range" "--exact-max 51: expected 0..50" "$ST" mwu "$tmp/c0a" "$tmp/c0b" --exact-max 51

@@ -407,8 +407,18 @@ static void test_post_load_run(void) {
   fake_run(sub, "configs/integrated_stct.cfg", "1,1,1");
   CU_ASSERT_EQUAL(st_post_load_run(sub, &stct, 1, &ind, err, sizeof err), ST_ERR_PARSE);
   ST_ASSERT_CONTAINS(err, "fitness.csv:3: 3 fields");
+  /* fitness.csv through the bounded reader: a NUL byte is refused, not read as the line's end */
+  static const char nul_csv[] = "generation,best_t0\n0,1\0junk\n";
+  char csv[400];
+  snprintf(csv, sizeof csv, "%s/fitness.csv", sub);
+  FILE *f = fopen(csv, "wb");
+  CU_ASSERT_PTR_NOT_NULL_FATAL(f);
+  fwrite(nul_csv, 1, sizeof nul_csv - 1, f);
+  fclose(f);
+  CU_ASSERT_EQUAL(st_post_load_run(sub, &stct, 1, &ind, err, sizeof err), ST_ERR_PARSE);
+  ST_ASSERT_CONTAINS(err, "fitness.csv:2: NUL byte at column 4 (expected a text file)");
   CU_ASSERT_EQUAL(st_post_load_run(dir, &stct, 1, &ind, err, sizeof err), ST_ERR_IO);
-  ST_ASSERT_CONTAINS(err, "config.ini: cannot open config");
+  ST_ASSERT_CONTAINS(err, "config.ini: cannot open: No such file or directory");
   /* labels */
   char label[128];
   st_post_run_label("runs/prims-s2/population.genome", label, sizeof label);

@@ -187,19 +187,26 @@ static int training_columns(char *header, int *gcol, int *tcol) {
   return nt;
 }
 
-/* the successes of the best in training generation G: fitness.csv's best_t<i> of G's row */
+/* the successes of the best in training generation G: fitness.csv's best_t<i> of G's row
+ * (the file through the bounded reader: at most ST_FILE_MAX bytes, no NUL byte) */
 static stStatus training_successes(const char *dir, int generation, uint8_t *success, int *n,
                                    char *err, size_t errsz) {
   char path[ST_PATH_MAX];
   snprintf(path, sizeof path, "%s/fitness.csv", dir);
-  FILE *f = fopen(path, "r");
-  if (!f) return st__errf(err, errsz, "%s: cannot open: %s", path, strerror(errno)), ST_ERR_IO;
-  char *line = NULL;
-  size_t cap = 0;
+  char *text;
+  size_t len;
+  stStatus st = st_file_read(path, ST_FILE_MAX, &text, &len, err, errsz);
+  if (st) return st;
+  if ((st = st_text_check(path, text, len, err, errsz))) {
+    free(text);
+    return st;
+  }
   int gcol = -1, tcol[ST_INT_MAX_TRIALS], lineno = 0, found = 0;
-  stStatus st = ST_OK;
   *n = 0;
-  while (!found && !st && getline(&line, &cap, f) > 0) {
+  for (char *line = text, *next; !found && !st && line < text + len; line = next) {
+    char *nl = memchr(line, '\n', (size_t)(text + len - line));
+    next = nl ? nl + 1 : text + len;
+    if (nl) *nl = 0; /* the last line ends at the buffer's terminating NUL */
     if (++lineno == 1) {
       *n = training_columns(line, &gcol, tcol);
       if (gcol < 0 || *n == 0) {
@@ -222,8 +229,7 @@ static stStatus training_successes(const char *dir, int generation, uint8_t *suc
     found = 1;
     for (int i = 0; i < *n; i++) success[i] = (uint8_t)(strcmp(fld[tcol[i]], "0") != 0);
   }
-  free(line);
-  fclose(f);
+  free(text);
   if (!st && !found) {
     st = ST_ERR_PARSE;
     st__errf(err, errsz, "%s: no row for generation %d, the last of best.genome (expected the "
