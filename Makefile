@@ -233,14 +233,17 @@ $(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_OBJ) $(HEADERS)
 	$(FUZZ_CXX) -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $@.o $(FUZZ_OBJ) $(LIBS_SIM) $(LIBS_CORE)
 
 # seeds: the shipped configs, genomes and URDF, a short run's checkpoint with its files, and
-# the inputs fuzzing found (tests/fuzz/regressions/TARGET/: each is a regression test too)
+# the inputs fuzzing found (tests/fuzz/regressions/TARGET/: each is a regression test too);
+# each seed is named after its path (data/evolved/prims_s2/population.genome ->
+# data_evolved_prims_s2_population.genome): several runs' population.genome do not collide
 FUZZ_SEEDS_config := configs/*.cfg
 FUZZ_SEEDS_genome := data/evolved/*.genome data/evolved/*/population.genome tests/golden/*.genome
 FUZZ_SEEDS_urdf := data/*.urdf tests/fuzz/seeds/urdf/*
 FUZZ_SEEDS_checkpoint := tests/fuzz/seeds/checkpoint/*
 $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 	@mkdir -p $(@D)
-	cp $(wildcard $(FUZZ_SEEDS_$*) tests/fuzz/regressions/$*/*) $(@D)/
+	@for f in $(wildcard $(FUZZ_SEEDS_$*) tests/fuzz/regressions/$*/*); do \
+	  cp "$$f" "$(@D)/$$(echo "$$f" | tr / _)" || exit 1; done
 	@touch $@
 
 # each target for FUZZ_RUNS executions (or FUZZ_TIME seconds), one after the other, niced (the

@@ -3,9 +3,10 @@
 # (simple-prim, a main-prim generation, the integrated stage); bad input is refused by rank 0
 # alone with today's message; a killed or hanging worker ends the run with a clear error and
 # an intact checkpoint, and the resume (with another number of ranks) ends with the same files;
-# a rank that cannot evaluate (a node without the data) is named. Also the cluster scripts of
-# tools/cluster/ (no SLURM needed). The MPI checks are skipped when mpirun is missing or
-# apps/evolve was built without MPI.
+# a rank that cannot evaluate (a node without the data) is named; a bad checkpoint is refused by
+# the validated reader before anything changes. Also the cluster scripts of tools/cluster/ (no
+# SLURM needed). The MPI checks are skipped when mpirun is missing or apps/evolve was built
+# without MPI.
 set -uo pipefail
 CHECK=check_mpi
 source "$(dirname "$0")/check_lib.sh"
@@ -132,6 +133,20 @@ else
   ko "bad input under MPI" "$(cat "$tmp/b1.err" "$tmp/b2.err")"
 fi
 
+# --resume under MPI reads the checkpoint through the validated reader on rank 0 (issue 17): a
+# bad one is refused once, naming the file, line and field, with the directory as it was
+cp -r "$tmp/t1" "$tmp/rb"
+sed -i 's/^# stage_idx 0$/# stage_idx 5/' "$tmp/rb/checkpoint"
+rb_digest() { (cd "$tmp/rb" && find . | sort && find . -type f -exec sha256sum {} + | sort); }
+before=$(rb_digest)
+mpi 3 $cfg --seed 11 --generations $G --out "$tmp/rb" --resume > /dev/null 2> "$tmp/rb.err"; rc=$?
+if [ $rc != 0 ] && [ "$before" = "$(rb_digest)" ] &&
+   [ "$(grep -c "^evolve: .*$tmp/rb/checkpoint:3: field 'stage_idx': 5 is out of range" "$tmp/rb.err")" = 1 ]; then
+  ok "--resume under MPI: a bad checkpoint refused by the validated reader, the directory unchanged"
+else
+  ko "bad checkpoint under MPI" "rc $rc: $(cat "$tmp/rb.err")"
+fi
+
 descendants() { # PID
   local p
   for p in $(pgrep -P "$1"); do echo "$p"; descendants "$p"; done
@@ -196,7 +211,7 @@ fi
 # a rank that cannot evaluate (here: started where data/ is missing, as on a node without the
 # files) is named by rank 0, and the job ends
 mpirun_ -n 1 "$EV" $cfg --out "$tmp/w" : -n 2 -wdir "$tmp" "$PWD/$EV" > /dev/null 2> "$tmp/w.err"; rc=$?
-if [ $rc != 0 ] && [ "$(grep -c "^evolve: MPI rank 1 (host .*) cannot evaluate: data/icub_left_arm.urdf: cannot open" "$tmp/w.err")" = 1 ] &&
+if [ $rc != 0 ] && [ "$(grep -c "^evolve: MPI rank 1 (host .*) cannot evaluate: key 'robot.urdf': data/icub_left_arm.urdf: cannot open" "$tmp/w.err")" = 1 ] &&
    [ "$(grep -c "^evolve:" "$tmp/w.err")" = 1 ]; then
   ok "a rank that cannot build the protocol is named once, and the job ends (exit $rc)"
 else
