@@ -125,6 +125,23 @@ else ko "integration" "$(tail -2 "$tmp/i1.err")"; fi
 if same_out "$tmp/i1" "$tmp/i2"; then ok "integration: 1 and 2 threads give byte-identical files"
 else ko "integration threads"; fi
 
+# replay --posteval: the same trial run again on its own, traced, must end as posteval's row says
+# (genotype 1 of prims_s2, its 8 trials: heard,success,reached_step,end,steps_run,open_jumped)
+RP="$APPDIR/replay"
+want=$(awk -F, 'NR > 1 && $3 == 0 && $4 == 1 { print $5, $15, $11, $12, $16, $17, $13 }' "$tmp/i1/trials.csv")
+got=$(for i in 0 1 2 3 4 5 6 7; do
+  "$RP" data/evolved/prims_s2/population.genome configs/prims.cfg --posteval integration --trial $i \
+    --index 1 "${int[@]}" --out "$tmp/rp$i.csv" 2> /dev/null |
+    sed -E 's/.*trial ([0-9]+) .* heard=([a-z+]*) success=([01]) reached_step=(-?[0-9]+) steps=([0-9]+)\/[0-9]+ end=([a-z]+) open_jumped=([01])$/\1 \2 \3 \4 \6 \5 \7/'
+done)
+rows=$(awk 'END { print NR }' "$tmp/rp7.csv")
+steps7=$(echo "$want" | awk '$1 == 7 { print $6 }')
+if [ -n "$want" ] && [ "$got" = "$want" ] && [ "$rows" = $((steps7 + 1)) ] &&
+   { "$RP" data/evolved/prims_s2/population.genome configs/prims.cfg --posteval robustness --trial 0 \
+     --caretaker > "$tmp/rpc" 2>&1; [ $? = 2 ]; } && grep -q -- '--caretaker is the generalisation test' "$tmp/rpc"; then
+  ok "replay --posteval integration: 8 trials end as posteval's rows (words heard, success, steps), one trace row per step"
+else ko "replay --posteval" "want: $(echo $want | head -c 200) got: $(echo $got | head -c 200)"; fi
+
 # ---- robustness: two ST-CT runs (self talk), one NI run (no words)
 rob=(--set posteval.robustness_trials=8 --set integrated.steps=40)
 "$PE" robustness configs/integrated_stct.cfg "$tmp/stct-s1" "$tmp/stct-s2" "${rob[@]}" --threads 1 \

@@ -129,10 +129,11 @@ typedef struct stPostResult {
 } stPostResult;
 
 /* Runs one trial of a controller (an evolved network: st_net_controller; the scripted one)
- * hearing `words`, with the secondary input network.secondary_input when it has 26 inputs. */
+ * hearing `words`, with the secondary input network.secondary_input when it has 26 inputs.
+ * Nullable: trace (called after every step, as st_episode_run's; replay --posteval). */
 stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                            const stPostTrial *trial, const stController *ctl, stWordSource words,
-                           stPostResult *r, char *err, size_t errsz);
+                           stPostResult *r, stTraceFn trace, void *ctx, char *err, size_t errsz);
 
 /* ---- individuals ---- */
 

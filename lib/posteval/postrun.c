@@ -437,7 +437,7 @@ static stStatus run_trials(postRun *R, char *err, size_t errsz) {
       stNetController nc;
       const stController ctl = st_net_controller(&nc, &R->net[i], NULL, 0);
       stStatus st = st_post_run_trial(R->proto, &R->idef, ws, &R->trials[t], &ctl, R->words,
-                                      &R->res[u], e, sizeof e);
+                                      &R->res[u], NULL, NULL, e, sizeof e);
 #pragma omp critical
       {
         if (st && (failed < 0 || u < failed)) {
