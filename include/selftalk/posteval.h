@@ -210,10 +210,18 @@ typedef struct stPostRunDef {
   const char *out_dir;
   int threads;               /* 0: run.threads, else one per core */
   FILE *progress;            /* nullable: progress lines (trials done, speed, time left) */
+  int resume;                /* 1: continue from out_dir/posteval.journal when there is one */
+  double journal_seconds;    /* the journal is written this often: 0 the default
+                                (ST_POST_JOURNAL_SECONDS), < 0 after every trial */
 } stPostRunDef;
 
+#define ST_POST_JOURNAL_SECONDS 30.0
+
 /* Loads the individuals, runs every trial of every individual (OpenMP over trials; the files
- * are the same whatever the number of threads), writes the files atomically. Refuses keys the
+ * are the same whatever the number of threads), writes the files atomically. The trials done
+ * are journalled in out_dir/posteval.journal (kept when the test ends: a record of it); with
+ * resume a killed test continues from there to the same files, without resume a directory
+ * with a journal is refused. Refuses keys the
  * test does not read (in the config file: unless the run's stages read them), inputs that
  * cannot be read, and an unwritable directory before any trial. */
 stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz);
