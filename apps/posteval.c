@@ -4,7 +4,8 @@
  *   posteval integration    CONFIG POPULATION... [options]   (configs/prims.cfg, main_prim.cfg)
  *   posteval robustness     CONFIG RUNDIR...     [options]   (configs/integrated_<cond>.cfg)
  *   posteval generalisation CONFIG RUNDIR...     [--caretaker] [options]
- *   options: [--out DIR] [--threads N] [--condition NAME] [--set section.key=value]...
+ *   options: [--out DIR] [--threads N] [--condition NAME] [--resume] [--journal-every S]
+ *            [--set section.key=value]...
  *            [--help-config]
  *
  * integration: the top posteval.integration_top (10) genotypes of each population file (or
@@ -15,7 +16,10 @@
  * with no autonomous success in its last training generation scores 0 without being run;
  * --caretaker runs every individual with the caretaker's words (ST-CT0, ST0).
  * Writes DIR/trials.csv, DIR/summary.csv and DIR/config.ini atomically (default DIR
- * runs/posteval/TEST-CONDITION); progress on stderr. The files are the same for any --threads. */
+ * runs/posteval/TEST-CONDITION); progress on stderr. The files are the same for any --threads.
+ * The trials done are journalled in DIR/posteval.journal every --journal-every S seconds (30;
+ * 0: after every trial): --resume continues a killed test from there to the same files; a
+ * directory with a journal is refused without --resume. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,7 +33,8 @@ static void usage(FILE *f) {
   fprintf(f, "usage: posteval integration CONFIG POPULATION... [options]\n"
              "       posteval robustness CONFIG RUNDIR... [options]\n"
              "       posteval generalisation CONFIG RUNDIR... [--caretaker] [options]\n"
-             "options: [--out DIR] [--threads N] [--condition NAME] [--set section.key=value]...\n"
+             "options: [--out DIR] [--threads N] [--condition NAME] [--resume] [--journal-every S]\n"
+             "         [--set section.key=value]...\n"
              "         [--help-config]\n");
 }
 
@@ -39,7 +44,8 @@ typedef struct cli {
   appConfigArgs ca;
   const char *test, *out, *condition;
   const char *inputs[MAX_INPUTS];
-  int ninputs, threads, caretaker;
+  int ninputs, threads, caretaker, resume;
+  double journal_seconds;
 } cli;
 
 /* a positional argument: the test, the config (unless --config), then the inputs */
@@ -58,6 +64,15 @@ static void parse(cli *c, int argc, char **argv) {
     else if (!strcmp(a, "--threads") && i + 1 < argc) c->threads = app_int_arg(prog, a, argv[++i], 1);
     else if (!strcmp(a, "--condition") && i + 1 < argc) c->condition = argv[++i];
     else if (!strcmp(a, "--caretaker")) c->caretaker = 1;
+    else if (!strcmp(a, "--resume")) c->resume = 1;
+    else if (!strcmp(a, "--journal-every") && i + 1 < argc) {
+      char *end;
+      c->journal_seconds = strtod(argv[++i], &end);
+      if (end == argv[i] || *end || !(c->journal_seconds >= 0.0 && c->journal_seconds <= 86400.0))
+        app_die(prog, "--journal-every '%s': expected seconds, 0 to 86400 (0: after every trial)",
+                argv[i]);
+      if (c->journal_seconds == 0.0) c->journal_seconds = -1.0; /* the library's "every trial" */
+    }
     else if (!strcmp(a, "--help") || !strcmp(a, "-h")) usage(stdout), exit(0);
     else if (a[0] == '-' && a[1]) {
       usage(stderr);
@@ -90,7 +105,7 @@ int main(int argc, char **argv) {
     c.out = dir;
   }
   const stPostRunDef def = {&cfg, &file_cfg, (stPostTest)test, c.inputs, c.ninputs, c.caretaker,
-                            c.condition, c.out, c.threads, stderr};
+                            c.condition, c.out, c.threads, stderr, c.resume, c.journal_seconds};
   char err[2048];
   if (st_post_run(&def, err, sizeof err)) app_die(prog, "%s", err);
   return 0;

@@ -21,6 +21,10 @@
  * --force overrides network output OUT (0..11 the DOF of SPEC §3, 12 focus) with VALUE (0..1)
  * from step STEP on (default 0): what the individual would do with, e.g., its thumb opposed.
  *
+ * --posteval TEST (integration, robustness, generalisation) replays trial K of that
+ * post-evaluation's table instead (posteval's trial numbering, its random streams: the trial
+ * posteval ran; CONFIG as given to posteval, --caretaker as its generalisation variant), and
+ * prints the words heard and how it ended, as posteval's trials.csv has them.
  * --shapes FILE writes the collision shapes (st_world_shapes: every robot geometry, the ball,
  * the table, the target) of the state after the chosen steps' actions, one CSV row per shape:
  * step,kind,owner,type,sx,sy,sz,px,py,pz,r00..r22 (docs/PROTOCOL.md, "Robot pictures"). The
@@ -38,6 +42,7 @@
 
 #include "app_common.h"
 #include "selftalk/integrated.h"
+#include "selftalk/posteval.h"
 #include "selftalk/trial.h"
 #include "selftalk/world.h"
 
@@ -300,6 +305,35 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
   printf("\n");
 }
 
+/* trial K of a post-evaluation (posteval's numbering and streams) */
+static void replay_posteval(const stProtocol *p, stPostTest test, int caretaker, int trial,
+                            const stNetParams *np, traceCtx *trace) {
+  stPostDef pd;
+  stIntegratedDef idef;
+  st_post_def_from_config(&p->cfg, test, &pd);
+  st_integrated_def_from_config(&p->cfg, &idef);
+  if (trial >= pd.trials) app_die(prog, "--trial %d: the %s test has trials 0..%d", trial,
+                                  st_post_test_name(test), pd.trials - 1);
+  char err[1024];
+  stWordSource words;
+  if (st_post_words(&idef, test, caretaker, &words, err, sizeof err)) app_die(prog, "%s", err);
+  stPostTrial t;
+  st_post_trial(&pd, &p->scene, trial, &t);
+  trace->arch = np->arch;
+  stWorkspace ws = {NULL, NULL};
+  stNetController nc;
+  const stController ctl = st_net_controller(&nc, np, NULL, 0);
+  stPostResult r;
+  const stTraceFn fn = trace->f || trace->shapes ? on_step : NULL;
+  if (st_post_run_trial(p, &idef, &ws, &t, &ctl, words, &r, fn, trace, err, sizeof err))
+    app_die(prog, "%s", err);
+  st_workspace_free(&ws);
+  printf("trial %d %s type=%d cell=%d posture=%d repetition=%d words=%s heard=%s success=%d "
+         "reached_step=%d steps=%d/%d end=%s open_jumped=%d\n", trial, st_post_test_name(test),
+         t.type, t.cell, t.posture, t.repetition, st_word_source_name(words), r.heard, r.success,
+         r.reached_step, r.steps_run, t.steps, ENDS[r.end], r.open_jumped);
+}
+
 /* without --index: see the header comment */
 static int pick_index(const stGenomeSet *set, const char *genome, int generation) {
   int history = set->count > 0 && set->generation[0] >= 0;
@@ -316,8 +350,8 @@ static int pick_index(const stGenomeSet *set, const char *genome, int generation
 int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
-  const char *genome = NULL, *out = NULL, *stage_name = NULL;
-  int trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0, digits = 9;
+  const char *genome = NULL, *out = NULL, *stage_name = NULL, *post_name = NULL;
+  int caretaker = 0, trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0, digits = 9;
   stForce force[MAX_FORCE];
   shapesOut so;
   memset(&so, 0, sizeof so);
@@ -332,6 +366,8 @@ int main(int argc, char **argv) {
       force[nforce++] = force_arg(argv[++i]);
     }
     else if (!strcmp(a, "--stage") && i + 1 < argc) stage_name = argv[++i];
+    else if (!strcmp(a, "--posteval") && i + 1 < argc) post_name = argv[++i];
+    else if (!strcmp(a, "--caretaker")) caretaker = 1;
     else if (!strcmp(a, "--shapes") && i + 1 < argc) so.path = argv[++i];
     else if (!strcmp(a, "--at") && i + 1 < argc) at_arg(&so, argv[++i]);
     else if (!strcmp(a, "--shapes-every") && i + 1 < argc) so.every = app_int_arg(prog, a, argv[++i], 1);
@@ -349,6 +385,7 @@ int main(int argc, char **argv) {
   if (!genome || !ca.config_path)
     app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--exact] "
                   "[--stage simple|main] [--generation G] [--index I] [--force OUT=VALUE[@STEP]]... "
+                  "[--posteval integration|robustness|generalisation [--caretaker]] "
                   "[--shapes FILE [--at STEP,...|last] [--shapes-every N]]");
   if (!so.path && (so.nat || so.last || so.every))
     app_die(prog, "--at and --shapes-every choose the steps of --shapes FILE: give --shapes");
@@ -356,12 +393,19 @@ int main(int argc, char **argv) {
   app_config_resolve(&ca, &cfg, prog);
   const int integrated = cfg.stage_stages == ST_STAGES_INTEGRATED;
   if (trial < 0) app_die(prog, "--trial K is required");
-  if (!integrated && trial >= ST_PRIM_TRIALS) app_die(prog, "--trial: expected 0..%d", ST_PRIM_TRIALS - 1);
+  const int post = post_name ? st_post_test_parse(post_name) : -1;
+  if (post_name && post < 0)
+    app_die(prog, "--posteval '%s': expected integration, robustness or generalisation", post_name);
+  if (caretaker && post != ST_POST_GENERALISATION)
+    app_die(prog, "--caretaker is the generalisation test's variant: give --posteval generalisation");
+  if (post >= 0 && (stage_name || nforce))
+    app_die(prog, "--posteval replays a post-evaluation trial: --stage and --force apply to primitive trials");
+  if (post < 0 && !integrated && trial >= ST_PRIM_TRIALS) app_die(prog, "--trial: expected 0..%d", ST_PRIM_TRIALS - 1);
   if (integrated && (stage_name || nforce))
     app_die(prog, "%s is an integrated-stage config: --stage and --force apply to primitive trials",
             ca.config_path);
   stStage stage = cfg.stage_stages == ST_STAGES_MAIN ? ST_STAGE_MAIN : ST_STAGE_SIMPLE;
-  if (!stage_name && cfg.stage_stages == ST_STAGES_PRIMS)
+  if (post < 0 && !stage_name && cfg.stage_stages == ST_STAGES_PRIMS)
     app_die(prog, "%s runs simple-prim then main-prim: give --stage simple or --stage main",
             ca.config_path);
   if (stage_name) {
@@ -390,7 +434,8 @@ int main(int argc, char **argv) {
   if (out && !(trace.f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
   if (trace.f) header(trace.f);
   if (so.path) trace.shapes = shapes_open(&so, p, digits);
-  if (integrated) replay_integrated(p, generation, index, trial, &np, &trace);
+  if (post >= 0) replay_posteval(p, (stPostTest)post, caretaker, trial, &np, &trace);
+  else if (integrated) replay_integrated(p, generation, index, trial, &np, &trace);
   else replay_primitive(p, stage, generation, index, trial, &np, force, nforce, &trace);
   if (trace.f && fclose(trace.f) != 0) app_die(prog, "%s: write error", out);
   if (trace.shapes) shapes_finish(trace.shapes);

@@ -102,11 +102,11 @@ sys.exit(1 if bad else 0)
 PY
 }
 
-same_out() { # DIR1 DIR2: the three files byte for byte, and no temporary file left
-  for f in trials.csv summary.csv config.ini; do
+same_out() { # DIR1 DIR2: the four files byte for byte, and no temporary file left
+  for f in trials.csv summary.csv config.ini posteval.journal; do
     cmp -s "$1/$f" "$2/$f" || { echo "  $f differs"; return 1; }
   done
-  [ "$(ls "$1" | wc -l)" = 3 ] && [ "$(ls "$2" | wc -l)" = 3 ]
+  [ "$(ls "$1" | wc -l)" = 4 ] && [ "$(ls "$2" | wc -l)" = 4 ]
 }
 
 # ---- integration: a population file and a run still going (its checkpoint)
@@ -124,6 +124,59 @@ if [ $rc1 = 0 ] && check_files integration "$tmp/i1" caretaker incremental 4 &&
 else ko "integration" "$(tail -2 "$tmp/i1.err")"; fi
 if same_out "$tmp/i1" "$tmp/i2"; then ok "integration: 1 and 2 threads give byte-identical files"
 else ko "integration threads"; fi
+
+# replay --posteval: the same trial run again on its own, traced, must end as posteval's row says
+# (genotype 1 of prims_s2, its 8 trials: heard,success,reached_step,end,steps_run,open_jumped)
+RP="$APPDIR/replay"
+want=$(awk -F, 'NR > 1 && $3 == 0 && $4 == 1 { print $5, $15, $11, $12, $16, $17, $13 }' "$tmp/i1/trials.csv")
+got=$(for i in 0 1 2 3 4 5 6 7; do
+  "$RP" data/evolved/prims_s2/population.genome configs/prims.cfg --posteval integration --trial $i \
+    --index 1 "${int[@]}" --out "$tmp/rp$i.csv" 2> /dev/null |
+    sed -E 's/.*trial ([0-9]+) .* heard=([a-z+]*) success=([01]) reached_step=(-?[0-9]+) steps=([0-9]+)\/[0-9]+ end=([a-z]+) open_jumped=([01])$/\1 \2 \3 \4 \6 \5 \7/'
+done)
+rows=$(awk 'END { print NR }' "$tmp/rp7.csv")
+steps7=$(echo "$want" | awk '$1 == 7 { print $6 }')
+if [ -n "$want" ] && [ "$got" = "$want" ] && [ "$rows" = $((steps7 + 1)) ] &&
+   { "$RP" data/evolved/prims_s2/population.genome configs/prims.cfg --posteval robustness --trial 0 \
+     --caretaker > "$tmp/rpc" 2>&1; [ $? = 2 ]; } && grep -q -- '--caretaker is the generalisation test' "$tmp/rpc"; then
+  ok "replay --posteval integration: 8 trials end as posteval's rows (words heard, success, steps), one trace row per step"
+else ko "replay --posteval" "want: $(echo $want | head -c 200) got: $(echo $got | head -c 200)"; fi
+
+# ---- a killed test resumes (--resume) to the files of one run straight through
+kr=(integration configs/prims.cfg data/evolved/prims_s2/population.genome
+    --set posteval.integration_top=2 --set posteval.integration_trials=40 --set integrated.steps=100)
+"$PE" "${kr[@]}" --threads 2 --out "$tmp/k1" > /dev/null 2>&1
+"$PE" "${kr[@]}" --threads 1 --journal-every 0 --out "$tmp/k2" > /dev/null 2>&1 &
+pid=$!
+for _ in $(seq 600); do  # until some trials are journalled, at most 60 s
+  [ "$(grep -c '^[0-9]' "$tmp/k2/posteval.journal" 2>/dev/null)" -ge 5 ] 2>/dev/null && break
+  sleep 0.1
+done
+kill -9 $pid 2> /dev/null; wait $pid 2> /dev/null
+before=$(grep -c '^[0-9]' "$tmp/k2/posteval.journal" 2>/dev/null || echo 0)
+"$PE" "${kr[@]}" --threads 2 --out "$tmp/k2" > /dev/null 2> "$tmp/k2.err"; rc_no=$?
+"$PE" "${kr[@]}" --threads 2 --out "$tmp/k2" --resume > /dev/null 2> "$tmp/k2r.err"; rc=$?
+if [ "$before" -ge 5 ] && [ "$before" -lt 80 ] && [ ! -e "$tmp/k2/summary.csv.tmp" ] && [ $rc_no = 2 ] &&
+   grep -q 'give --resume' "$tmp/k2.err" && [ $rc = 0 ] && same_out "$tmp/k1" "$tmp/k2" &&
+   grep -q "80 trials ($before from the journal)" "$tmp/k2r.err"; then
+  ok "killed after $before of 80 trials, --resume gives the files of a run straight through (refused without --resume)"
+else ko "resume" "before=$before rc=$rc_no/$rc $(tail -1 "$tmp/k2r.err")"; fi
+# the journal's results are used as they are: unit 0 marked open_jumped shows in the summary
+cp -r "$tmp/k2" "$tmp/k3"
+sed -i 's/^0,\(.*\),0,\([a-z]*\)$/0,\1,1,\2/' "$tmp/k3/posteval.journal"
+"$PE" "${kr[@]}" --out "$tmp/k3" --resume > /dev/null 2>&1
+j1=$(awk -F, 'NR == 2 { print $8 }' "$tmp/k1/summary.csv") j3=$(awk -F, 'NR == 2 { print $8 }' "$tmp/k3/summary.csv")
+if [ -n "$j1" ] && [ "$j3" = $((j1 + 1)) ]; then ok "resume takes the journalled results (an edited unit shows: open_jumped $j1 -> $j3)"
+else ko "resume reads the journal" "open_jumped $j1 -> $j3"; fi
+# a journal of other keys, and a damaged one, are refused naming the file and line
+"$PE" "${kr[@]}" --set integrated.steps=90 --out "$tmp/k2" --resume > /dev/null 2> "$tmp/e1"; rc1=$?
+sed -i '7s/^\([0-9]*\),0,/\1,7,/' "$tmp/k2/posteval.journal"
+"$PE" "${kr[@]}" --out "$tmp/k2" --resume > /dev/null 2> "$tmp/e2"; rc2=$?
+if [ $rc1 = 2 ] && grep -q 'posteval.journal:2: .* belongs to another test' "$tmp/e1" &&
+   [ $rc2 = 2 ] && grep -q 'posteval.journal:7: not a trial line' "$tmp/e2" &&
+   cmp -s "$tmp/k1/summary.csv" "$tmp/k2/summary.csv"; then
+  ok "resume refuses a journal of other keys (line 2) and a damaged line (line 7); the files stay"
+else ko "resume refusals" "$rc1 $(cat "$tmp/e1") / $rc2 $(cat "$tmp/e2")"; fi
 
 # ---- robustness: two ST-CT runs (self talk), one NI run (no words)
 rob=(--set posteval.robustness_trials=8 --set integrated.steps=40)

@@ -257,7 +257,7 @@ static void test_post_scripted_trials(void) {
     stPostTrial t;
     st_post_trial(&d, &p->scene, i, &t);
     stPostResult r;
-    CU_ASSERT_EQUAL_FATAL(st_post_run_trial(p, &idef, &ws, &t, &ctl, ST_WORDS_CARETAKER, &r, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_post_run_trial(p, &idef, &ws, &t, &ctl, ST_WORDS_CARETAKER, &r, NULL, NULL, err, sizeof err), ST_OK);
     CU_ASSERT(r.success == 1 && r.end == ST_END_SUCCESS && r.unstable == 0);
     CU_ASSERT(r.reached_step > 40 && r.reached_step < 200);
     CU_ASSERT_EQUAL(r.steps_run, r.reached_step + 1); /* decided: ended there */
@@ -269,10 +269,10 @@ static void test_post_scripted_trials(void) {
   stPostTrial t;
   st_post_trial(&d, &p->scene, 24 * 40 + 2 * 10, &t);
   stPostResult r;
-  CU_ASSERT_EQUAL(st_post_run_trial(p, &idef, &ws, &t, &ctl, ST_WORDS_CARETAKER, &r, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_post_run_trial(p, &idef, &ws, &t, &ctl, ST_WORDS_CARETAKER, &r, NULL, NULL, err, sizeof err), ST_OK);
   CU_ASSERT(r.success == 1 && r.reached_step > 0 && !strcmp(r.heard, "rgm"));
   t.steps = 30;
-  CU_ASSERT_EQUAL(st_post_run_trial(p, &idef, &ws, &t, &ctl, ST_WORDS_NONE, &r, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_post_run_trial(p, &idef, &ws, &t, &ctl, ST_WORDS_NONE, &r, NULL, NULL, err, sizeof err), ST_OK);
   CU_ASSERT(r.success == 0 && r.reached_step == -1 && r.end == ST_END_FULL && r.heard[0] == 0);
   CU_ASSERT_EQUAL(r.steps_run, 30);
   CU_ASSERT_EQUAL(r.open_jumped, 0);

@@ -107,21 +107,22 @@ $(OUT)/int-%/population.genome: $(PRIM_POPS)
 	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIM_POPS))) > $(@D).log
 
 
-# ---- post-evaluation (each writes DIR/trials.csv and DIR/summary.csv atomically)
+# ---- post-evaluation (each writes DIR/trials.csv and DIR/summary.csv atomically; --resume
+# continues a killed test from its DIR/posteval.journal)
 $(POST_INTEG): $(PRIM_POPS)
-	$(POSTEVAL) integration configs/prims.cfg $(PRIM_POPS) --out $(@D) $(THREADS_ARG) $(INTEG_ARGS)
+	$(POSTEVAL) integration configs/prims.cfg $(PRIM_POPS) --out $(@D) --resume $(THREADS_ARG) $(INTEG_ARGS)
 
 $(OUT)/posteval/robustness-%/summary.csv: $(INT_POPS)
 	$(POSTEVAL) robustness configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --out $(@D) $(THREADS_ARG) $(ROB_ARGS)
+	  --out $(@D) --resume $(THREADS_ARG) $(ROB_ARGS)
 
 $(OUT)/posteval/generalisation-%0/summary.csv: $(INT_POPS)
 	$(POSTEVAL) generalisation configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --caretaker --out $(@D) $(THREADS_ARG) $(GEN_ARGS)
+	  --caretaker --out $(@D) --resume $(THREADS_ARG) $(GEN_ARGS)
 
 $(OUT)/posteval/generalisation-%/summary.csv: $(INT_POPS)
 	$(POSTEVAL) generalisation configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --out $(@D) $(THREADS_ARG) $(GEN_ARGS)
+	  --out $(@D) --resume $(THREADS_ARG) $(GEN_ARGS)
 
 # posteval writes trials.csv with summary.csv
 $(OUT)/posteval/%/trials.csv: $(OUT)/posteval/%/summary.csv

@@ -129,10 +129,11 @@ typedef struct stPostResult {
 } stPostResult;
 
 /* Runs one trial of a controller (an evolved network: st_net_controller; the scripted one)
- * hearing `words`, with the secondary input network.secondary_input when it has 26 inputs. */
+ * hearing `words`, with the secondary input network.secondary_input when it has 26 inputs.
+ * Nullable: trace (called after every step, as st_episode_run's; replay --posteval). */
 stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                            const stPostTrial *trial, const stController *ctl, stWordSource words,
-                           stPostResult *r, char *err, size_t errsz);
+                           stPostResult *r, stTraceFn trace, void *ctx, char *err, size_t errsz);
 
 /* ---- individuals ---- */
 
@@ -209,10 +210,18 @@ typedef struct stPostRunDef {
   const char *out_dir;
   int threads;               /* 0: run.threads, else one per core */
   FILE *progress;            /* nullable: progress lines (trials done, speed, time left) */
+  int resume;                /* 1: continue from out_dir/posteval.journal when there is one */
+  double journal_seconds;    /* the journal is written this often: 0 the default
+                                (ST_POST_JOURNAL_SECONDS), < 0 after every trial */
 } stPostRunDef;
 
+#define ST_POST_JOURNAL_SECONDS 30.0
+
 /* Loads the individuals, runs every trial of every individual (OpenMP over trials; the files
- * are the same whatever the number of threads), writes the files atomically. Refuses keys the
+ * are the same whatever the number of threads), writes the files atomically. The trials done
+ * are journalled in out_dir/posteval.journal (kept when the test ends: a record of it); with
+ * resume a killed test continues from there to the same files, without resume a directory
+ * with a journal is refused. Refuses keys the
  * test does not read (in the config file: unless the run's stages read them), inputs that
  * cannot be read, and an unwritable directory before any trial. */
 stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz);

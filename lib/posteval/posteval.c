@@ -231,7 +231,7 @@ static void post_end(void *self, const stWorld *w) {
 
 stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                            const stPostTrial *t, const stController *ctl, stWordSource words,
-                           stPostResult *r, char *err, size_t errsz) {
+                           stPostResult *r, stTraceFn trace, void *ctx, char *err, size_t errsz) {
   memset(r, 0, sizeof *r);
   stIntegratedDef def = *idef;
   def.steps = t->steps; /* the scorer fills the remainder of this length (unused here) */
@@ -243,7 +243,7 @@ stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stW
   ps.inner = st_int_scorer(&ps.is, p, &def, &ps.ir, NULL);
   ps.r = r;
   const stScorer sc = {post_begin, post_step, post_end, &ps};
-  return st_episode_run(p, ws, &e, ctl, &w, &sc, NULL, NULL, err, errsz);
+  return st_episode_run(p, ws, &e, ctl, &w, &sc, trace, ctx, err, errsz);
 }
 
 /* ---- results ---- */

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "core/internal.h"
+#include "posteval/journal.h"
 #include "selftalk/io.h"
 #include "selftalk/posteval.h"
 
@@ -280,11 +281,14 @@ typedef struct postRun {
   stPostTrial *trials;
   stNetParams *net;
   stPostResult *res;
+  uint8_t *unit_done;      /* per unit: its result is in res (run here or read from the journal) */
   stProtocol *proto;
   stWorkspace *ws;
   int threads;
-  long total, done;
-  double t0, last_print;
+  long total, done, resumed;
+  double t0, last_print, last_journal, journal_every;
+  uint64_t fingerprint;
+  char journal[ST_PATH_MAX];
 } postRun;
 
 static double now(void) {
@@ -383,8 +387,9 @@ static stStatus allocate(postRun *R, char *err, size_t errsz) {
   R->trials = calloc(nt, sizeof *R->trials);
   R->net = calloc((size_t)R->nind, sizeof *R->net);
   R->res = calloc((size_t)R->nind * nt, sizeof *R->res);
+  R->unit_done = calloc((size_t)R->nind * nt, 1);
   R->ws = calloc((size_t)R->threads, sizeof *R->ws);
-  if (R->trials && R->net && R->res && R->ws) return ST_OK;
+  if (R->trials && R->net && R->res && R->unit_done && R->ws) return ST_OK;
   return st__errf(err, errsz, "posteval: out of memory"), ST_ERR_NOMEM;
 }
 
@@ -402,48 +407,95 @@ static stStatus prepare(postRun *R, char *err, size_t errsz) {
   return ST_OK;
 }
 
+/* DIR/posteval.journal: a test killed before its end continues with --resume; one already
+ * there without --resume is refused (nothing is overwritten); a complete journal re-writes the
+ * same files */
+static stStatus open_journal(postRun *R, char *err, size_t errsz) {
+  const stPostRunDef *d = R->def;
+  snprintf(R->journal, sizeof R->journal, "%s/%s", d->out_dir, ST_POST_JOURNAL);
+  R->fingerprint = st__post_fingerprint(R->cfg, d->test, d->caretaker, R->condition, R->ind,
+                                        R->nind);
+  R->journal_every = d->journal_seconds > 0 ? d->journal_seconds
+                     : d->journal_seconds < 0 ? 0.0 : ST_POST_JOURNAL_SECONDS;
+  if (access(R->journal, F_OK) != 0) {
+    if (errno == ENOENT) return ST_OK;
+    return st__errf(err, errsz, "%s: %s", R->journal, strerror(errno)), ST_ERR_IO;
+  }
+  if (!d->resume)
+    return st__errf(err, errsz, "%s holds a post-evaluation (%s): give --resume to continue it "
+                    "(or re-write its files), or choose another --out", d->out_dir, R->journal),
+           ST_ERR_ARG;
+  const long units = (long)R->nind * R->pd.trials;
+  stStatus st = st__post_journal_read(R->journal, R->fingerprint, units, R->unit_done, R->res,
+                                      &R->resumed, err, errsz);
+  for (long u = 0; !st && u < units; u++)
+    if (R->unit_done[u] && R->ind[u / R->pd.trials].excluded)
+      st = (st__errf(err, errsz, "%s: unit %ld is of an excluded individual", R->journal, u),
+            ST_ERR_PARSE);
+  return st;
+}
+
+static stStatus write_journal(const postRun *R, char *err, size_t errsz) {
+  return st__post_journal_write(R->journal, R->fingerprint, (long)R->nind * R->pd.trials,
+                                R->unit_done, R->res, err, errsz);
+}
+
 static void hms(double s, char *buf, size_t n) {
   const long t = (long)(s + 0.5);
   snprintf(buf, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
 }
 
-/* one more trial done; a progress line every 10 s and at the end (called in a critical
- * section) */
-static void progress(postRun *R) {
+/* unit u done: the journal every journal_every seconds; a progress line every 10 s and at the
+ * end (called in a critical section) */
+static stStatus progress(postRun *R, long u, char *err, size_t errsz) {
+  R->unit_done[u] = 1;
   R->done++;
   FILE *f = R->def->progress;
   const double t = now();
-  if (!f || (t - R->last_print < 10.0 && R->done < R->total)) return;
+  if (t - R->last_journal >= R->journal_every) {
+    R->last_journal = t;
+    stStatus st = write_journal(R, err, errsz);
+    if (st) return st;
+  }
+  if (!f || (t - R->last_print < 10.0 && R->done < R->total)) return ST_OK;
   R->last_print = t;
-  const double el = t - R->t0, rate = R->done / (el > 0 ? el : 1e-9);
+  const double el = t - R->t0, rate = (R->done - R->resumed) / (el > 0 ? el : 1e-9);
   char e1[32], e2[32];
   hms(el, e1, sizeof e1);
   hms((double)(R->total - R->done) / rate, e2, sizeof e2);
   fprintf(f, "posteval %s %s: %ld/%ld trials (%.1f%%) | %.2f trials/s elapsed %s left %s\n",
           R->labels.test, R->condition, R->done, R->total, 100.0 * R->done / R->total, rate, e1, e2);
   fflush(f);
+  return ST_OK;
 }
 
-/* every trial of every individual not excluded; unit u = individual u / trials, trial
- * u % trials; results by index, so the files do not depend on the threads */
+/* every trial of every individual not excluded and not in the journal; unit u = individual
+ * u / trials, trial u % trials; results by index, so the files do not depend on the threads.
+ * A trial that fails is reported (the first by index); one that cannot write the journal
+ * stops the test. */
 static stStatus run_trials(postRun *R, char *err, size_t errsz) {
   const long nt = R->pd.trials, units = (long)R->nind * nt;
   long failed = -1;
+  int stop = 0;
   stStatus first = ST_OK;
   char msg[1200] = "";
-  R->t0 = R->last_print = now();
+  R->done = R->resumed;
+  R->t0 = R->last_print = R->last_journal = now();
 #pragma omp parallel num_threads(R->threads)
   {
     stWorkspace *ws = &R->ws[omp_get_thread_num()];
 #pragma omp for schedule(dynamic, 1)
     for (long u = 0; u < units; u++) {
       const int i = (int)(u / nt), t = (int)(u % nt);
-      if (R->ind[i].excluded) continue;
+      int stopped;
+#pragma omp atomic read
+      stopped = stop;
+      if (stopped || R->ind[i].excluded || R->unit_done[u]) continue;
       char e[512];
       stNetController nc;
       const stController ctl = st_net_controller(&nc, &R->net[i], NULL, 0);
       stStatus st = st_post_run_trial(R->proto, &R->idef, ws, &R->trials[t], &ctl, R->words,
-                                      &R->res[u], e, sizeof e);
+                                      &R->res[u], NULL, NULL, e, sizeof e);
 #pragma omp critical
       {
         if (st && (failed < 0 || u < failed)) {
@@ -452,12 +504,18 @@ static stStatus run_trials(postRun *R, char *err, size_t errsz) {
           snprintf(msg, sizeof msg, "%s, genotype %d, trial %d: %s", R->ind[i].path,
                    R->ind[i].rank, t, e);
         }
-        progress(R);
+        if (!st && !stop && (st = progress(R, u, e, sizeof e)) != ST_OK) {
+          failed = 0; /* before every trial's own failure */
+          first = st;
+          snprintf(msg, sizeof msg, "%s", e);
+#pragma omp atomic write
+          stop = 1;
+        }
       }
     }
   }
-  if (failed >= 0) st__errf(err, errsz, "%s", msg);
-  return first;
+  if (failed >= 0) return st__errf(err, errsz, "%s", msg), first;
+  return write_journal(R, err, errsz); /* complete: every unit */
 }
 
 static stStatus write_file(const char *dir, const char *name, const postRun *R, char *err,
@@ -495,9 +553,9 @@ static void finish_line(const postRun *R) {
   for (int i = 0; i < R->nind; i++) excluded += R->ind[i].excluded;
   char e[32];
   hms(now() - R->t0, e, sizeof e);
-  fprintf(f, "posteval %s %s: %d individuals (%d excluded), %ld trials in %s on %d threads; "
-          "files in %s\n", R->labels.test, R->condition, R->nind, excluded, R->total, e,
-          R->threads, R->def->out_dir);
+  fprintf(f, "posteval %s %s: %d individuals (%d excluded), %ld trials (%ld from the journal) "
+          "in %s on %d threads; files in %s\n", R->labels.test, R->condition, R->nind, excluded,
+          R->total, R->resumed, e, R->threads, R->def->out_dir);
 }
 
 static void release(postRun *R) {
@@ -507,6 +565,7 @@ static void release(postRun *R) {
   free(R->trials);
   free(R->net);
   free(R->res);
+  free(R->unit_done);
   st_protocol_destroy(R->proto);
 }
 
@@ -526,6 +585,7 @@ stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz) {
   if (!st) st = allocate(&R, err, errsz);
   if (!st) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
   if (!st) st = prepare(&R, err, errsz);
+  if (!st) st = open_journal(&R, err, errsz);
   if (!st) st = run_trials(&R, err, errsz);
   if (!st) st = write_files(&R, err, errsz);
   if (!st) finish_line(&R);

@@ -1,0 +1,201 @@
+/* SPDX-License-Identifier: MIT
+ * The journal of an unfinished post-evaluation (journal.h). One line per trial done, in unit
+ * order; every field an integer except the words heard, so the resumed files are the same. */
+#include "posteval/journal.h"
+
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/internal.h"
+#include "selftalk/io.h"
+
+#define MAGIC "# selftalk posteval journal 1"
+#define COLUMNS "unit,success,reached_step,steps_run,end,unstable,open_jumped,heard"
+#define LINE_MAX_LEN 256
+#define STEP_MAX 1000000 /* far beyond any trial length */
+
+/* ---- fingerprint (FNV-1a, 64 bit) ---- */
+
+static uint64_t fnv(uint64_t h, const void *data, size_t n) {
+  const unsigned char *p = data;
+  for (size_t i = 0; i < n; i++) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+static uint64_t fnv_int(uint64_t h, long v) {
+  char buf[32];
+  return fnv(h, buf, (size_t)snprintf(buf, sizeof buf, "%ld;", v));
+}
+
+static uint64_t fnv_str(uint64_t h, const char *s) { return fnv(h, s, strlen(s) + 1); }
+
+/* the configuration as config.ini has it (every key, resolved) */
+static uint64_t fnv_config(uint64_t h, const stConfig *cfg) {
+  FILE *f = tmpfile();
+  if (!f || st_config_write(f, cfg) != 0) {
+    if (f) fclose(f);
+    return fnv_str(h, "config: unwritable"); /* then no journal matches by chance either */
+  }
+  rewind(f);
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, f)) > 0) h = fnv(h, buf, n);
+  fclose(f);
+  return h;
+}
+
+uint64_t st__post_fingerprint(const stConfig *cfg, stPostTest test, int caretaker,
+                              const char *condition, const stPostIndividual *ind, int nind) {
+  uint64_t h = 14695981039346656037ull;
+  h = fnv_config(h, cfg);
+  h = fnv_int(h, test);
+  h = fnv_int(h, caretaker);
+  h = fnv_str(h, condition);
+  h = fnv_int(h, nind);
+  for (int i = 0; i < nind; i++) {
+    const stPostIndividual *d = &ind[i];
+    h = fnv_int(h, d->run);
+    h = fnv_str(h, d->run_label);
+    h = fnv_int(h, d->rank);
+    h = fnv_int(h, d->generation);
+    h = fnv_int(h, d->excluded);
+    h = fnv_int(h, d->genome.ngenes);
+    for (int g = 0; g < d->genome.ngenes; g++) h = fnv_int(h, d->genome.gene[g]);
+  }
+  return h;
+}
+
+/* ---- writing ---- */
+
+stStatus st__post_journal_write(const char *path, uint64_t fingerprint, long units,
+                                const uint8_t *done, const stPostResult *res, char *err,
+                                size_t errsz) {
+  stAtomicFile af;
+  stStatus st = st_atomic_open(&af, path, err, errsz);
+  if (st) return st;
+  int rc = fprintf(af.f, MAGIC "\n# fingerprint %016" PRIx64 "\n# units %ld\n" COLUMNS "\n",
+                   fingerprint, units) < 0;
+  for (long u = 0; u < units && !rc; u++) {
+    if (!done[u]) continue;
+    const stPostResult *r = &res[u];
+    rc = fprintf(af.f, "%ld,%d,%d,%d,%d,%d,%d,%s\n", u, r->success, r->reached_step, r->steps_run,
+                 (int)r->end, r->unstable, r->open_jumped, r->heard) < 0;
+  }
+  if (rc) {
+    st_atomic_abort(&af);
+    return st__errf(err, errsz, "%s: cannot write", path), ST_ERR_IO;
+  }
+  return st_atomic_commit(&af, err, errsz);
+}
+
+/* ---- reading ---- */
+
+/* an integer field in [lo, hi], ended by ',' (advances *s past it) */
+static int field(const char **s, long lo, long hi, long *v) {
+  char *end;
+  const char *p = *s;
+  if (!((*p >= '0' && *p <= '9') || *p == '-')) return 0;
+  long x = strtol(p, &end, 10);
+  if (end == p || *end != ',' || x < lo || x > hi) return 0;
+  *v = x;
+  *s = end + 1;
+  return 1;
+}
+
+/* the words heard: letters r, o, g, m (no repeat in a row), at most ST_POST_HEARD_MAX, then
+ * an optional '+' */
+static int heard_ok(const char *h) {
+  size_t n = strlen(h);
+  if (n > 0 && h[n - 1] == '+') n--;
+  if (n > ST_POST_HEARD_MAX || (h[n] == '+' && n < ST_POST_HEARD_MAX)) return 0;
+  for (size_t i = 0; i < n; i++)
+    if (!h[i] || !strchr("rogm", h[i]) || (i > 0 && h[i] == h[i - 1])) return 0;
+  return 1;
+}
+
+/* one trial line into res[u]; 0 when malformed */
+static int parse_line(const char *line, long units, long *unit, stPostResult *r) {
+  const char *s = line;
+  long u, v[6];
+  static const long lo[6] = {0, -1, 0, 0, 0, 0}, hi[6] = {1, STEP_MAX, STEP_MAX, 3, 1, 1};
+  if (!field(&s, 0, units - 1, &u)) return 0;
+  for (int i = 0; i < 6; i++)
+    if (!field(&s, lo[i], hi[i], &v[i])) return 0;
+  if (strlen(s) > ST_POST_HEARD_MAX + 1 || !heard_ok(s)) return 0;
+  /* a success has its step, within the steps run, and ended so */
+  if ((v[0] == 1) != (v[1] >= 0) || (v[0] && v[3] != ST_END_SUCCESS) || (v[1] >= 0 && v[1] >= v[2]))
+    return 0;
+  memset(r, 0, sizeof *r);
+  r->success = (int)v[0];
+  r->reached_step = (int)v[1];
+  r->steps_run = (int)v[2];
+  r->end = (stTrialEnd)v[3];
+  r->unstable = (int)v[4];
+  r->open_jumped = (int)v[5];
+  strcpy(r->heard, s);
+  *unit = u;
+  return 1;
+}
+
+/* a line without its newline; 0 at the end, -1 when too long or without newline */
+static int get_line(FILE *f, char *buf, size_t n) {
+  if (!fgets(buf, (int)n, f)) return 0;
+  size_t len = strlen(buf);
+  if (len == 0 || buf[len - 1] != '\n') return -1;
+  buf[len - 1] = 0;
+  return 1;
+}
+
+static stStatus header(FILE *f, const char *path, uint64_t fingerprint, long units, char *err,
+                       size_t errsz) {
+  char line[LINE_MAX_LEN], want[64];
+  if (get_line(f, line, sizeof line) != 1 || strcmp(line, MAGIC))
+    return st__errf(err, errsz, "%s:1: not a posteval journal (expected '" MAGIC "')", path),
+           ST_ERR_PARSE;
+  snprintf(want, sizeof want, "# fingerprint %016" PRIx64, fingerprint);
+  if (get_line(f, line, sizeof line) != 1 || strcmp(line, want))
+    return st__errf(err, errsz, "%s:2: '%s' belongs to another test: the configuration, the "
+                    "inputs or the condition changed (expected '%s'; remove the journal to "
+                    "start again)", path, line, want), ST_ERR_ARG;
+  snprintf(want, sizeof want, "# units %ld", units);
+  if (get_line(f, line, sizeof line) != 1 || strcmp(line, want))
+    return st__errf(err, errsz, "%s:3: '%s' (expected '%s')", path, line, want), ST_ERR_PARSE;
+  if (get_line(f, line, sizeof line) != 1 || strcmp(line, COLUMNS))
+    return st__errf(err, errsz, "%s:4: expected the columns '" COLUMNS "'", path), ST_ERR_PARSE;
+  return ST_OK;
+}
+
+stStatus st__post_journal_read(const char *path, uint64_t fingerprint, long units, uint8_t *done,
+                               stPostResult *res, long *ndone, char *err, size_t errsz) {
+  memset(done, 0, (size_t)units);
+  memset(res, 0, (size_t)units * sizeof *res);
+  *ndone = 0;
+  FILE *f = fopen(path, "r");
+  if (!f) return st__errf(err, errsz, "%s: cannot open", path), ST_ERR_IO;
+  stStatus st = header(f, path, fingerprint, units, err, errsz);
+  char line[LINE_MAX_LEN];
+  int rc;
+  for (long n = 5; !st && (rc = get_line(f, line, sizeof line)) != 0; n++) {
+    long u;
+    stPostResult r;
+    if (rc < 0 || !parse_line(line, units, &u, &r))
+      st = (st__errf(err, errsz, "%s:%ld: not a trial line (expected %s with unit 0..%ld, "
+                     "success 0/1, its step, the steps run, end 0..3, 0/1, 0/1, the words heard)",
+                     path, n, COLUMNS, units - 1), ST_ERR_PARSE);
+    else if (done[u])
+      st = (st__errf(err, errsz, "%s:%ld: unit %ld twice", path, n, u), ST_ERR_PARSE);
+    else {
+      done[u] = 1;
+      res[u] = r;
+      (*ndone)++;
+    }
+  }
+  if (!st && ferror(f)) st = (st__errf(err, errsz, "%s: read error", path), ST_ERR_IO);
+  fclose(f);
+  return st;
+}
