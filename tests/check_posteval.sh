@@ -177,6 +177,16 @@ if [ $rc1 = 2 ] && grep -q 'posteval.journal:2: .* belongs to another test' "$tm
    cmp -s "$tmp/k1/summary.csv" "$tmp/k2/summary.csv"; then
   ok "resume refuses a journal of other keys (line 2) and a damaged line (line 7); the files stay"
 else ko "resume refusals" "$rc1 $(cat "$tmp/e1") / $rc2 $(cat "$tmp/e2")"; fi
+# the journal goes through the bounded reader (issue 17): a NUL byte, and a journal larger than
+# its units can fill, are refused
+cp -r "$tmp/k1" "$tmp/k4" && sed -i '6s/,/,\x00/' "$tmp/k4/posteval.journal"
+"$PE" "${kr[@]}" --out "$tmp/k4" --resume > /dev/null 2> "$tmp/e3"; rc3=$?
+cp -r "$tmp/k1" "$tmp/k5" && head -c 30000 /dev/zero | tr '\0' 'x' >> "$tmp/k5/posteval.journal"
+"$PE" "${kr[@]}" --out "$tmp/k5" --resume > /dev/null 2> "$tmp/e4"; rc4=$?
+if [ $rc3 = 2 ] && grep -q 'posteval.journal:6: NUL byte at column [0-9]* (expected a text file)' "$tmp/e3" &&
+   [ $rc4 = 2 ] && grep -q 'posteval.journal: larger than .* (expected an input file of at most 21504 bytes)' "$tmp/e4"; then
+  ok "resume refuses a journal with a NUL byte (line 6) or larger than its 80 units can fill"
+else ko "journal through the bounded reader" "$rc3 $(cat "$tmp/e3") / $rc4 $(cat "$tmp/e4")"; fi
 
 # ---- robustness: two ST-CT runs (self talk), one NI run (no words)
 rob=(--set posteval.robustness_trials=8 --set integrated.steps=40)

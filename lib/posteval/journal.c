@@ -142,16 +142,25 @@ static int parse_line(const char *line, long units, long *unit, stPostResult *r)
   return 1;
 }
 
-/* a line without its newline; 0 at the end, -1 when too long or without newline */
-static int get_line(FILE *f, char *buf, size_t n) {
-  if (!fgets(buf, (int)n, f)) return 0;
-  size_t len = strlen(buf);
-  if (len == 0 || buf[len - 1] != '\n') return -1;
-  buf[len - 1] = 0;
+/* the journal's text (read whole through the bounded reader), line by line */
+typedef struct jtext {
+  const char *p, *end;
+} jtext;
+
+/* a line without its newline into buf; 0 at the end, -1 when too long or without newline */
+static int get_line(jtext *t, char *buf, size_t n) {
+  buf[0] = 0;
+  if (t->p >= t->end) return 0;
+  const char *nl = memchr(t->p, '\n', (size_t)(t->end - t->p));
+  const size_t len = (size_t)((nl ? nl : t->end) - t->p);
+  if (!nl || len + 1 >= n) return -1;
+  memcpy(buf, t->p, len);
+  buf[len] = 0;
+  t->p = nl + 1;
   return 1;
 }
 
-static stStatus header(FILE *f, const char *path, uint64_t fingerprint, long units, char *err,
+static stStatus header(jtext *f, const char *path, uint64_t fingerprint, long units, char *err,
                        size_t errsz) {
   char line[LINE_MAX_LEN], want[64];
   if (get_line(f, line, sizeof line) != 1 || strcmp(line, MAGIC))
@@ -175,12 +184,23 @@ stStatus st__post_journal_read(const char *path, uint64_t fingerprint, long unit
   memset(done, 0, (size_t)units);
   memset(res, 0, (size_t)units * sizeof *res);
   *ndone = 0;
-  FILE *f = fopen(path, "r");
-  if (!f) return st__errf(err, errsz, "%s: cannot open", path), ST_ERR_IO;
-  stStatus st = header(f, path, fingerprint, units, err, errsz);
+  /* through the bounded reader (selftalk/io.h), at most what a journal of `units` can hold
+   * (4 header lines and a line per unit), NUL bytes refused */
+  const size_t lines = (size_t)units + 4;
+  const size_t max = lines > ST_FILE_MAX / LINE_MAX_LEN ? ST_FILE_MAX : lines * LINE_MAX_LEN;
+  char *text;
+  size_t len;
+  stStatus st = st_file_read(path, max, &text, &len, err, errsz);
+  if (st) return st;
+  if ((st = st_text_check(path, text, len, err, errsz))) {
+    free(text);
+    return st;
+  }
+  jtext f = {text, text + len};
+  st = header(&f, path, fingerprint, units, err, errsz);
   char line[LINE_MAX_LEN];
   int rc;
-  for (long n = 5; !st && (rc = get_line(f, line, sizeof line)) != 0; n++) {
+  for (long n = 5; !st && (rc = get_line(&f, line, sizeof line)) != 0; n++) {
     long u;
     stPostResult r;
     if (rc < 0 || !parse_line(line, units, &u, &r))
@@ -195,7 +215,6 @@ stStatus st__post_journal_read(const char *path, uint64_t fingerprint, long unit
       (*ndone)++;
     }
   }
-  if (!st && ferror(f)) st = (st__errf(err, errsz, "%s: read error", path), ST_ERR_IO);
-  fclose(f);
+  free(text);
   return st;
 }

@@ -21,9 +21,10 @@ stStatus st__post_journal_write(const char *path, uint64_t fingerprint, long uni
                                 const uint8_t *done, const stPostResult *res, char *err,
                                 size_t errsz);
 
-/* Reads `path` into done[] and res[] (units entries each, zeroed first). Refuses, naming the
- * file and line, another fingerprint or unit count, a malformed or repeated line, and a
- * result out of range; *ndone the units read. */
+/* Reads `path` into done[] and res[] (units entries each, zeroed first), through the bounded
+ * reader (selftalk/io.h: at most what a journal of `units` holds; NUL bytes refused, naming
+ * the line and column). Refuses, naming the file and line, another fingerprint or unit count,
+ * a malformed or repeated line, and a result out of range; *ndone the units read. */
 stStatus st__post_journal_read(const char *path, uint64_t fingerprint, long units, uint8_t *done,
                                stPostResult *res, long *ndone, char *err, size_t errsz);
 
