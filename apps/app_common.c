@@ -68,9 +68,7 @@ void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog)
 char *app_read_text(const char *prog, const char *path, size_t *len) {
   char *text, err[1024];
   size_t n;
-  if (st_file_read(path, ST_FILE_MAX, &text, &n, err, sizeof err) ||
-      st_text_check(path, text, n, err, sizeof err))
-    app_die(prog, "%s", err);
+  if (st_text_read(path, ST_FILE_MAX, &text, &n, err, sizeof err)) app_die(prog, "%s", err);
   if (len) *len = n;
   return text;
 }

@@ -29,7 +29,7 @@ int app_config_arg(appConfigArgs *a, int argc, char **argv, int *i, const char *
 void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog);
 
 /* The whole text file at path through the library's bounded reader (selftalk/io.h:
- * st_file_read, at most ST_FILE_MAX bytes) with NUL bytes refused (st_text_check); dies naming
+ * st_text_read, at most ST_FILE_MAX bytes, NUL bytes refused); dies naming
  * the file (and the line of a NUL byte). The text is NUL-terminated after its *len bytes (len
  * nullable); free() it. */
 char *app_read_text(const char *prog, const char *path, size_t *len);

@@ -2,6 +2,7 @@
  * The bounded reader every input file goes through (selftalk/io.h): content, the size limit,
  * devices that never end, directories, and NUL bytes in text (issue 17). */
 #include <stdlib.h>
+#include <string.h>
 
 #include "selftalk/io.h"
 #include "test_util.h"
@@ -70,10 +71,27 @@ static void test_io_text_check(void) {
   CU_ASSERT_STRING_EQUAL(err, "t:1: NUL byte at column 1 (expected a text file)");
 }
 
+/* st_text_read: the bounded reader, then the NUL check, with their messages */
+static void test_io_text_read(void) {
+  char path[256], err[256] = "", *text = NULL;
+  size_t len = 0;
+  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp_n(path, sizeof path, ".txt", "a\nb\n", 4));
+  CU_ASSERT_EQUAL_FATAL(st_text_read(path, 10, &text, &len, err, sizeof err), ST_OK);
+  CU_ASSERT(len == 4 && !strcmp(text, "a\nb\n"));
+  free(text);
+  CU_ASSERT_EQUAL(st_text_read(path, 3, &text, &len, err, sizeof err), ST_ERR_RANGE);
+  CU_ASSERT(text == NULL && len == 0);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp_n(path, sizeof path, ".txt", "a\nb\0\n", 4));
+  CU_ASSERT_EQUAL(st_text_read(path, 10, &text, &len, err, sizeof err), ST_ERR_PARSE);
+  CU_ASSERT(text == NULL && len == 0);
+  ST_ASSERT_CONTAINS(err, ":2: NUL byte at column 2 (expected a text file)");
+}
+
 void st_suite_io(void) {
   ST_ADD_SUITE("io");
   ST_ADD_TEST(test_io_read);
   ST_ADD_TEST(test_io_read_large);
   ST_ADD_TEST(test_io_read_refusals);
   ST_ADD_TEST(test_io_text_check);
+  ST_ADD_TEST(test_io_text_read);
 }

@@ -33,6 +33,11 @@ stStatus st_file_read(const char *path, size_t max, char **data, size_t *len, ch
  * file)". */
 stStatus st_text_check(const char *name, const char *text, size_t len, char *err, size_t errsz);
 
+/* A whole text file: st_file_read, then st_text_check on what it read, with their errors. On
+ * failure *text is NULL and *len 0. */
+stStatus st_text_read(const char *path, size_t max, char **text, size_t *len, char *err,
+                      size_t errsz);
+
 /* A file being written atomically; a plain value owned by the caller. */
 typedef struct stAtomicFile {
   FILE *f; /* write through this between open and commit */

@@ -166,6 +166,17 @@ stStatus st_text_check(const char *name, const char *text, size_t len, char *err
   return ST_ERR_PARSE;
 }
 
+stStatus st_text_read(const char *path, size_t max, char **text, size_t *len, char *err,
+                      size_t errsz) {
+  stStatus st = st_file_read(path, max, text, len, err, errsz);
+  if (!st && (st = st_text_check(path, *text, *len, err, errsz))) {
+    free(*text);
+    *text = NULL;
+    *len = 0;
+  }
+  return st;
+}
+
 stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t errsz) {
   memset(af, 0, sizeof *af);
   if (strlen(path) + 32 >= sizeof af->tmp) {

@@ -190,12 +190,8 @@ stStatus st__post_journal_read(const char *path, uint64_t fingerprint, long unit
   const size_t max = lines > ST_FILE_MAX / LINE_MAX_LEN ? ST_FILE_MAX : lines * LINE_MAX_LEN;
   char *text;
   size_t len;
-  stStatus st = st_file_read(path, max, &text, &len, err, errsz);
+  stStatus st = st_text_read(path, max, &text, &len, err, errsz);
   if (st) return st;
-  if ((st = st_text_check(path, text, len, err, errsz))) {
-    free(text);
-    return st;
-  }
   jtext f = {text, text + len};
   st = header(&f, path, fingerprint, units, err, errsz);
   char line[LINE_MAX_LEN];

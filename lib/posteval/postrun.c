@@ -196,12 +196,8 @@ static stStatus training_successes(const char *dir, int generation, uint8_t *suc
   snprintf(path, sizeof path, "%s/fitness.csv", dir);
   char *text;
   size_t len;
-  stStatus st = st_file_read(path, ST_FILE_MAX, &text, &len, err, errsz);
+  stStatus st = st_text_read(path, ST_FILE_MAX, &text, &len, err, errsz);
   if (st) return st;
-  if ((st = st_text_check(path, text, len, err, errsz))) {
-    free(text);
-    return st;
-  }
   int gcol = -1, tcol[ST_INT_MAX_TRIALS], lineno = 0, found = 0;
   *n = 0;
   for (char *line = text, *next; !found && !st && line < text + len; line = next) {
