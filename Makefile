@@ -209,7 +209,7 @@ FUZZ_DIR := build-fuzz
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_FLAGS := -g -O1 $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 FUZZ_TARGETS := config genome urdf checkpoint
-FUZZ_LIB := core/base core/rng core/config core/genome core/checkpoint model/model model/model_urdf
+FUZZ_LIB := core/base core/rng core/config core/genome run/checkpoint model/model model/model_urdf
 FUZZ_OBJ := $(FUZZ_LIB:%=$(FUZZ_DIR)/obj/%.o)
 FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
 FUZZ_RUNS ?= 1000000

@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: MIT
- * The checkpoint reader (lib/core/checkpoint.h): every finding of issue 17 refused, naming the file,
+ * The checkpoint reader (lib/run/checkpoint.h): every finding of issue 17 refused, naming the file,
  * the line and the field. Expected ranges are derived here from the run the checkpoint belongs
  * to (2 stages, 3 genotypes of 612 genes, a limit of 8 generations). */
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 
-#include "core/checkpoint.h"
+#include "run/checkpoint.h"
 #include "test_util.h"
 
 static const stCheckpointRun RUN = {2, 3, 612, 8};

@@ -11,7 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "core/checkpoint.h"
+#include "run/checkpoint.h"
 #include "core/internal.h"
 #include "selftalk/assemble.h"
 #include "selftalk/ga.h"
@@ -100,7 +100,7 @@ static stStatus prepare_dir(run *R, char *err, size_t errsz) {
   return ST_OK;
 }
 
-/* ---- checkpoint (lib/core/checkpoint.h) ---- */
+/* ---- checkpoint (lib/run/checkpoint.h) ---- */
 
 /* what a checkpoint of this run may hold */
 static stCheckpointRun checkpoint_run(const run *R) {

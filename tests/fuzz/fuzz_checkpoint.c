@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT
- * Fuzz target: the checkpoint reader (lib/core/checkpoint.h). An input is a checkpoint, then
+ * Fuzz target: the checkpoint reader (lib/run/checkpoint.h). An input is a checkpoint, then
  * optionally "\n#--- fitness.csv\n" and that file's bytes, then "\n#--- best.genome\n" and
  * that file's (the seed, tests/fuzz/seeds/checkpoint, is a short run's three files so joined):
  * the two files are written to a private directory and checked against the checkpoint as
@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "core/checkpoint.h"
+#include "run/checkpoint.h"
 #include "core/readers.h"
 
 static const stCheckpointRun RUN = {2, 2, 612, 1500};

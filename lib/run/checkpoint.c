@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT
  * The checkpoint of an evolution run: writer and the one validated reader (lib/checkpoint.h). */
 #define _POSIX_C_SOURCE 200809L
-#include "core/checkpoint.h"
+#include "run/checkpoint.h"
 
 #include <ctype.h>
 #include <errno.h>
