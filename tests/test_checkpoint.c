@@ -82,35 +82,47 @@ static void test_ckpt_ranges(void) {
              "an integer in [0, 1]: the run has two stages)", idx[i]);
     expect_parse(h, 3, ST_ERR_RANGE, want);
   }
-  /* generation 2147483647 overflowed gen + 1; 2^32 + 1 wrapped to 1 in the long -> int cast */
-  expect_parse(HEADER("2147483647", "0", "2147483647", "0", "1", "1"), 3, ST_ERR_RANGE,
-               "run/checkpoint:2: field 'generation': 2147483647 is out of range (expected an "
-               "integer in [1, 8]: the run's generation limit");
-  expect_parse(HEADER("4294967297", "0", "1", "0", "1", "1"), 3, ST_ERR_RANGE,
-               ":2: field 'generation': 4294967297 is out of range");
-  expect_parse(HEADER("99999999999999999999", "0", "1", "0", "1", "1"), 3, ST_ERR_PARSE,
-               ":2: field 'generation': '99999999999999999999' is not an integer");
-  expect_parse(HEADER("0", "0", "0", "0", "1", "1"), 3, ST_ERR_RANGE,
-               ":2: field 'generation': 0 is out of range (expected an integer in [1, 8]");
-  /* any non-zero done meant "complete" */
-  expect_parse(HEADER("5", "0", "5", "2", "830", "7539"), 3, ST_ERR_RANGE,
-               ":5: field 'done': 2 is out of range (expected an integer in [0, 1]");
-  expect_parse(HEADER("5", "0", "5", "-1", "830", "7539"), 3, ST_ERR_RANGE, ":5: field 'done'");
-  /* at the limit a run is complete: done 0 there would run a generation past it */
-  expect_parse(HEADER("8", "0", "8", "0", "830", "7539"), 3, ST_ERR_RANGE,
-               ":5: field 'done': 0 is out of range (expected an integer in [1, 1]: a run at its "
-               "generation limit is complete)");
-  /* stage_gen against the stage: the first stage ran every generation, a later one fewer */
-  expect_parse(HEADER("5", "0", "4", "0", "830", "7539"), 3, ST_ERR_RANGE,
-               ":4: field 'stage_gen': 4 is out of range (expected an integer in [5, 5]");
-  expect_parse(HEADER("5", "1", "5", "0", "830", "7539"), 3, ST_ERR_RANGE,
-               ":4: field 'stage_gen': 5 is out of range (expected an integer in [0, 4]");
-  expect_parse(HEADER("5", "1", "2", "0", "0", "7539"), 3, ST_ERR_RANGE,
-               ":6: field 'csv_bytes': 0 is out of range");
-  expect_parse(HEADER("5", "1", "2", "0", "830", "-7"), 3, ST_ERR_RANGE,
-               ":7: field 'best_bytes': -7 is out of range");
-  expect_parse(HEADER("5", "1", "2", "0", "830", "75x"), 3, ST_ERR_PARSE,
-               ":7: field 'best_bytes': '75x' is not an integer");
+  /* one header each: generation, stage_idx, stage_gen, done, csv_bytes, best_bytes; the status
+   * and a part of the message that names the line and the field */
+  static const struct {
+    const char *f[6];
+    stStatus st;
+    const char *want;
+  } cases[] = {
+      /* generation 2147483647 overflowed gen + 1; 2^32 + 1 wrapped to 1 in the long -> int cast */
+      {{"2147483647", "0", "2147483647", "0", "1", "1"}, ST_ERR_RANGE,
+       "run/checkpoint:2: field 'generation': 2147483647 is out of range (expected an integer in "
+       "[1, 8]: the run's generation limit"},
+      {{"4294967297", "0", "1", "0", "1", "1"}, ST_ERR_RANGE,
+       ":2: field 'generation': 4294967297 is out of range"},
+      {{"99999999999999999999", "0", "1", "0", "1", "1"}, ST_ERR_PARSE,
+       ":2: field 'generation': '99999999999999999999' is not an integer"},
+      {{"0", "0", "0", "0", "1", "1"}, ST_ERR_RANGE,
+       ":2: field 'generation': 0 is out of range (expected an integer in [1, 8]"},
+      /* any non-zero done meant "complete" */
+      {{"5", "0", "5", "2", "830", "7539"}, ST_ERR_RANGE,
+       ":5: field 'done': 2 is out of range (expected an integer in [0, 1]"},
+      {{"5", "0", "5", "-1", "830", "7539"}, ST_ERR_RANGE, ":5: field 'done'"},
+      /* at the limit a run is complete: done 0 there would run a generation past it */
+      {{"8", "0", "8", "0", "830", "7539"}, ST_ERR_RANGE,
+       ":5: field 'done': 0 is out of range (expected an integer in [1, 1]: a run at its "
+       "generation limit is complete)"},
+      /* stage_gen against the stage: the first stage ran every generation, a later one fewer */
+      {{"5", "0", "4", "0", "830", "7539"}, ST_ERR_RANGE,
+       ":4: field 'stage_gen': 4 is out of range (expected an integer in [5, 5]"},
+      {{"5", "1", "5", "0", "830", "7539"}, ST_ERR_RANGE,
+       ":4: field 'stage_gen': 5 is out of range (expected an integer in [0, 4]"},
+      {{"5", "1", "2", "0", "0", "7539"}, ST_ERR_RANGE, ":6: field 'csv_bytes': 0 is out of range"},
+      {{"5", "1", "2", "0", "830", "-7"}, ST_ERR_RANGE, ":7: field 'best_bytes': -7 is out of range"},
+      {{"5", "1", "2", "0", "830", "75x"}, ST_ERR_PARSE,
+       ":7: field 'best_bytes': '75x' is not an integer"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    char h[512];
+    const char *const *f = cases[i].f;
+    snprintf(h, sizeof h, HEADER("%s", "%s", "%s", "%s", "%s", "%s"), f[0], f[1], f[2], f[3], f[4], f[5]);
+    expect_parse(h, 3, cases[i].st, cases[i].want);
+  }
 }
 
 /* every field required, on its line: a missing one silently became 0 (cutting fitness.csv and
