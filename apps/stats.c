@@ -685,13 +685,17 @@ static int cmd_times(const opts *o) {
   const comparisons cs = compare_all(o, &rs);
   const double dt = control_dt(o);
   printf("# %s: mean seconds to the target over the successful trials ((reached_step + 1) x %g s), "
-         "the individuals significantly better with self talk (p <= %g)\n\n| |", o->pos[1], dt,
+         "the individuals significantly better with self talk (p <= %g)\n\n", o->pos[1], dt,
          o->alpha);
   int n = 0;
-  for (int i = 0; i < cs.n; i++)
-    if (!strcmp(cs.c[i].better, "selftalk")) printf(" %s run %d |", cs.c[i].cond, cs.c[i].run), n++;
-  if (!n) printf("\n\nno individual is significantly better with self talk\n");
-  else times_rows(&cs, n, dt);
+  for (int i = 0; i < cs.n; i++) n += !strcmp(cs.c[i].better, "selftalk");
+  if (!n) printf("no individual is significantly better with self talk\n");
+  else {
+    printf("| |"); /* the table: one column per such individual */
+    for (int i = 0; i < cs.n; i++)
+      if (!strcmp(cs.c[i].better, "selftalk")) printf(" %s run %d |", cs.c[i].cond, cs.c[i].run);
+    times_rows(&cs, n, dt);
+  }
   free(cs.c);
   free(rs.data);
   return 0;
