@@ -67,6 +67,17 @@ int st__parse_int(const char *s, int *out) {
   return 0;
 }
 
+int st__text_line(const char **p, const char *end, const char **line, size_t *len, int *newline) {
+  if (*p >= end) return 0;
+  const char *nl = memchr(*p, '\n', (size_t)(end - *p));
+  const char *e = nl ? nl : end;
+  *line = *p;
+  *len = (size_t)(e - *p);
+  if (newline) *newline = nl != NULL;
+  *p = nl ? nl + 1 : end;
+  return 1;
+}
+
 size_t st__strlcpy(char *dst, const char *src, size_t n) {
   size_t len = strlen(src);
   if (n) {

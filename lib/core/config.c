@@ -646,9 +646,11 @@ static void fail(loader *L, stStatus st, const char *fmt, const char *a, const c
 
 /* the next line of the text (with its newline) into L->buf; -1 at the end */
 static int next_line(loader *L) {
-  if (L->text >= L->end) return -1;
-  const char *nl = memchr(L->text, '\n', (size_t)(L->end - L->text));
-  const size_t n = nl ? (size_t)(nl + 1 - L->text) : (size_t)(L->end - L->text);
+  const char *line;
+  size_t len;
+  int newline;
+  if (!st__text_line(&L->text, L->end, &line, &len, &newline)) return -1;
+  const size_t n = len + (size_t)newline; /* with its newline */
   if (n + 1 > L->cap) {
     char *b = realloc(L->buf, n + 1);
     if (!b) {
@@ -658,9 +660,8 @@ static int next_line(loader *L) {
     L->buf = b;
     L->cap = n + 1;
   }
-  memcpy(L->buf, L->text, n);
+  memcpy(L->buf, line, n);
   L->buf[n] = 0;
-  L->text += n;
   return 0;
 }
 

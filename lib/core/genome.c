@@ -123,11 +123,10 @@ typedef struct gparse {
 /* the next line of [*p, end) without surrounding white space (*col0 columns dropped before
  * it); 0 at the end of the text */
 static int next_line(const char **p, const char *end, const char **s, size_t *n, size_t *col0) {
-  if (*p >= end) return 0;
-  const char *line = *p, *b = line;
-  const char *nl = memchr(line, '\n', (size_t)(end - line));
-  const char *e = nl ? nl : end;
-  *p = nl ? nl + 1 : end;
+  const char *line;
+  size_t len;
+  if (!st__text_line(p, end, &line, &len, NULL)) return 0;
+  const char *b = line, *e = line + len;
   while (b < e && isspace((unsigned char)*b)) b++;
   while (e > b && isspace((unsigned char)e[-1])) e--;
   *s = b;

@@ -28,4 +28,9 @@ int st__parse_int(const char *s, int *out);
 /* Copies at most n-1 bytes and always terminates; returns strlen(src) as strlcpy does. */
 size_t st__strlcpy(char *dst, const char *src, size_t n);
 
+/* The next line of the text [*p, end), for the readers of a file read whole: *line its start,
+ * *len its length without the newline, *newline (nullable) 1 when a newline ends it. Moves *p
+ * past it. Returns 0 at the end of the text, 1 otherwise. */
+int st__text_line(const char **p, const char *end, const char **line, size_t *len, int *newline);
+
 #endif

@@ -150,13 +150,13 @@ typedef struct jtext {
 /* a line without its newline into buf; 0 at the end, -1 when too long or without newline */
 static int get_line(jtext *t, char *buf, size_t n) {
   buf[0] = 0;
-  if (t->p >= t->end) return 0;
-  const char *nl = memchr(t->p, '\n', (size_t)(t->end - t->p));
-  const size_t len = (size_t)((nl ? nl : t->end) - t->p);
-  if (!nl || len + 1 >= n) return -1;
-  memcpy(buf, t->p, len);
+  const char *line;
+  size_t len;
+  int newline;
+  if (!st__text_line(&t->p, t->end, &line, &len, &newline)) return 0;
+  if (!newline || len + 1 >= n) return -1;
+  memcpy(buf, line, len);
   buf[len] = 0;
-  t->p = nl + 1;
   return 1;
 }
 

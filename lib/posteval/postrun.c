@@ -200,10 +200,11 @@ static stStatus training_successes(const char *dir, int generation, uint8_t *suc
   if (st) return st;
   int gcol = -1, tcol[ST_INT_MAX_TRIALS], lineno = 0, found = 0;
   *n = 0;
-  for (char *line = text, *next; !found && !st && line < text + len; line = next) {
-    char *nl = memchr(line, '\n', (size_t)(text + len - line));
-    next = nl ? nl + 1 : text + len;
-    if (nl) *nl = 0; /* the last line ends at the buffer's terminating NUL */
+  const char *rest = text, *at;
+  size_t n_at;
+  while (!found && !st && st__text_line(&rest, text + len, &at, &n_at, NULL)) {
+    char *line = text + (at - text);
+    line[n_at] = 0; /* our copy: each line a C string (the last one's byte is the final NUL) */
     if (++lineno == 1) {
       *n = training_columns(line, &gcol, tcol);
       if (gcol < 0 || *n == 0) {

@@ -49,17 +49,15 @@ typedef struct hparse {
 
 /* the next line (without its newline and trailing white space) into buf; -1 at the end */
 static int header_line(hparse *h, char *buf, size_t bufsz) {
-  if (h->p >= h->end) return -1;
-  const char *nl = memchr(h->p, '\n', (size_t)(h->end - h->p));
-  const char *e = nl ? nl : h->end;
-  size_t n = (size_t)(e - h->p);
+  const char *line;
+  size_t n;
+  if (!st__text_line(&h->p, h->end, &line, &n, NULL)) return -1;
   if (n >= bufsz) n = bufsz - 1; /* a longer line cannot match: its start is enough to show */
-  memcpy(buf, h->p, n);
+  memcpy(buf, line, n);
   buf[n] = 0;
   while (n && isspace((unsigned char)buf[n - 1])) buf[--n] = 0;
   for (char *q = buf; *q; q++)
     if (!isprint((unsigned char)*q)) *q = '?';
-  h->p = nl ? nl + 1 : h->end;
   h->lineno++;
   return 0;
 }
