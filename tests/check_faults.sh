@@ -77,18 +77,22 @@ run_bg "$tmp/sync" LD_PRELOAD="$SHIM" ST_FAULT_FSYNC_AT=12; wait $pid; rc=$?
 stopped "fsync fails (ENOSPC)" "$tmp/sync" $rc "cannot write: No space left on device"
 
 # ---- the output directory becomes read-only mid-run
+# the run writes through a slow disk (the shim: 40 ms per rename, no file open meanwhile), so
+# the generations left after the third take seconds on any machine: the directory turns
+# read-only mid-run, not after a run that a fast machine already finished
+slow=(LD_PRELOAD="$SHIM" ST_FAULT_SLOW_RENAME_MS=40)
 if [ $can_mount = 1 ]; then
   tmpfs "$tmp/ro" 8m
-  run_bg "$tmp/ro/run"
+  run_bg "$tmp/ro/run" "${slow[@]}"
   wait_rows "$tmp/ro/run" 3
   # the remount waits for a moment no file is open for writing
-  for _ in $(seq 200); do mount -o remount,ro "$tmp/ro" 2> /dev/null && break; sleep 0.005; done
+  for _ in $(seq 400); do mount -o remount,ro "$tmp/ro" 2> /dev/null && break; sleep 0.005; done
   wait $pid; rc=$?
   mount -o remount,rw "$tmp/ro"
   stopped "read-only directory mid-run (tmpfs remounted)" "$tmp/ro/run" $rc "Read-only file system"
 elif [ "$(id -u)" != 0 ]; then
   mkdir -p "$tmp/ro"
-  run_bg "$tmp/ro"
+  run_bg "$tmp/ro" "${slow[@]}"
   wait_rows "$tmp/ro" 3
   chmod a-w "$tmp/ro"
   wait $pid; rc=$?

@@ -6,6 +6,11 @@
  *   ST_FAULT_RENAME_AT=N   rename fails with EIO (the atomic replace fails)
  *   ST_FAULT_FOPEN_AT=N    fopen for writing ("w", "a") fails with EROFS (a read-only
  *                          directory; for root, who ignores permissions, without a mount)
+ *   ST_FAULT_SLOW_RENAME_MS=M  every rename sleeps M ms once done (a slow disk): a run takes
+ *                          at least that long per file it writes, on any machine, so a test
+ *                          that acts on a running run (remount, kill, stop) has a window that
+ *                          does not shrink on a fast machine; while it sleeps no file is open
+ *                          and no temporary file waits
  * Not part of the library; built by the Makefile next to the test binary. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
@@ -13,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 /* 1 when this call is the N-th or a later one of the counter's */
 static int trips(const char *var, long *count) {
@@ -34,7 +40,15 @@ int rename(const char *from, const char *to) {
   static int (*real)(const char *, const char *);
   if (trips("ST_FAULT_RENAME_AT", &n)) return errno = EIO, -1;
   if (!real) *(void **)&real = dlsym(RTLD_NEXT, "rename");
-  return real(from, to);
+  int rc = real(from, to), e = errno;
+  const char *slow = getenv("ST_FAULT_SLOW_RENAME_MS");
+  if (slow && atol(slow) > 0) { /* after the rename: the file is whole, no temporary is left */
+    struct timespec ts = {atol(slow) / 1000, (atol(slow) % 1000) * 1000000L};
+    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
+    }
+  }
+  errno = e;
+  return rc;
 }
 
 FILE *fopen(const char *path, const char *mode) {
