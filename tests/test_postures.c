@@ -361,6 +361,34 @@ static void test_postures_grasp_ball_x(void) {
   fixture_close(&f);
 }
 
+/* postures.grasp_gap: the palm that far above the ball top, palm down and centred over it, up
+ * to the 8 cm that "a few centimetres" allows (6 cm is where open ends: the reach point 9.5 cm
+ * above the centre of a 3.5 cm ball); 10 cm is refused, naming the key */
+static void test_postures_grasp_gap(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  f.scene.posture.grasp_gap = 0.06;
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    double q[ST_NDOF], pos[3], normal[3];
+    state s;
+    posture_state(&f, ST_PRIM_GRASP, k, q, &s);
+    palm_pose(f.robot, q, pos, normal);
+    const double *obj = f.scene.obj_pos[k];
+    CU_ASSERT_DOUBLE_EQUAL(pos[2] - (obj[2] + f.scene.obj_radius), 0.06, 0.002);
+    CU_ASSERT(hypot(pos[0] - obj[0], pos[1] - obj[1]) <= 0.02);
+    CU_ASSERT(0.5 * (1.0 - normal[2]) > 0.9);
+    CU_ASSERT(s.q.d_r < 0.02); /* the palm 9.5 cm above the ball centre: the reach point */
+    CU_ASSERT(!s.c.arm_table && !s.c.robot_object);
+  }
+  char err[512];
+  double q[ST_NDOF];
+  f.scene.posture.grasp_gap = 0.10;
+  CU_ASSERT_EQUAL(st_posture(f.robot, &f.scene, ST_PRIM_GRASP, 0, q, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "above the ball top (expected 0.01..0.08)");
+  ST_ASSERT_CONTAINS(err, "postures.grasp_gap");
+  fixture_close(&f);
+}
+
 static void test_postures_move(void) {
   fixture f;
   CU_ASSERT_FATAL(fixture_open(&f));
@@ -454,6 +482,7 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_postures_open);
   ST_ADD_TEST(test_postures_grasp);
   ST_ADD_TEST(test_postures_grasp_ball_x);
+  ST_ADD_TEST(test_postures_grasp_gap);
   ST_ADD_TEST(test_postures_move);
   ST_ADD_TEST(test_posture_check_rejects);
   ST_ADD_TEST(test_posture_errors);

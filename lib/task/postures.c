@@ -66,8 +66,8 @@ static const double START_DEG[9] = {0, 0, -40, 30, 0, 90, 80, -30, 0};
 #define CHECK_OPEN_HIGH_MIN_GAP 0.02 /* open k=2,3: palm at least this above the ball top */
 #define CHECK_OPEN_HIGH_MAX_GAP 0.08
 #define CHECK_OPEN_HIGH_FLEX 0.7     /* open k=2,3: thumb and finger flexion at least this */
-#define CHECK_GRASP_MIN_GAP 0.01     /* grasp: palm centre 1-4 cm above the ball top */
-#define CHECK_GRASP_MAX_GAP 0.04
+#define CHECK_GRASP_MIN_GAP 0.01     /* grasp: palm centre 1-8 cm above the ball top ("a few */
+#define CHECK_GRASP_MAX_GAP 0.08     /* centimetres", as open k=2,3): 6 cm is where open ends */
 #define CHECK_GRASP_XY 0.02          /* grasp: the palm point grasp_ball_x ahead of the centre
                                         within this of the ball (horiz.) */
 #define CHECK_GRASP_BALL_X 0.05      /* grasp: |grasp_ball_x| at most this: the ball under the
