@@ -119,7 +119,7 @@ grep -qF "[keys: scene.object_center_x, scene.object_center_y, scene.table_top_z
   ok "... and lists scene.object_center_x" || ko "posture keys (scene)" "$(cat "$tmp/e")"
 expect "a grasp gap out of reach names the grasp keys" "posture grasp 0: inverse kinematics" "$tmp/p2" \
   "$EV" $cfg --out "$tmp/p2" --generations 1 --set postures.grasp_gap=0.25
-grep -qF "postures.grasp_ball_x, postures.grasp_gap, postures.grasp_oppose]" "$tmp/e" &&
+grep -qF "postures.grasp_ball_x, postures.grasp_gap, postures.grasp_oppose, postures.ik_torso_pitch, postures.ik_wrist_prosup, postures.ik_wrist_pitch]" "$tmp/e" &&
   ok "... and lists postures.grasp_gap" || ko "posture keys (grasp)" "$(cat "$tmp/e")"
 
 echo "check_inputs: $pass passed, $fail failed"

@@ -389,6 +389,37 @@ static void test_postures_grasp_gap(void) {
   fixture_close(&f);
 }
 
+/* postures.ik_*: the palm pose of open, grasp and move leaves the arm configuration free; the
+ * inverse kinematics ends near the configuration it starts from. Another start (torso bent
+ * 20 deg forward, wrist pronation 0, wrist pitch -45 deg) gives the same palm pose (the SPEC
+ * properties hold) with the torso further forward and the wrist further from its limits */
+static void test_postures_ik_start(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  for (int prim = ST_PRIM_OPEN; prim <= ST_PRIM_MOVE; prim++) {
+    double q0[ST_NDOF], q1[ST_NDOF], pos0[3], pos1[3], n0[3], n1[3];
+    state s0, s1;
+    f.scene.posture.ik_torso_pitch = 0.0, f.scene.posture.ik_wrist_prosup = 80.0;
+    f.scene.posture.ik_wrist_pitch = -30.0;
+    posture_state(&f, prim, 2, q0, &s0);
+    f.scene.posture.ik_torso_pitch = 20.0, f.scene.posture.ik_wrist_prosup = 0.0;
+    f.scene.posture.ik_wrist_pitch = -45.0;
+    posture_state(&f, prim, 2, q1, &s1);
+    palm_pose(f.robot, q0, pos0, n0);
+    palm_pose(f.robot, q1, pos1, n1);
+    /* open k=2 and grasp centre the palm over the ball; move holds the ball 3.5 cm ahead of
+     * it along the fingers, so its palm centre turns with the hand (st_posture checked both) */
+    if (prim != ST_PRIM_MOVE)
+      for (int i = 0; i < 3; i++) CU_ASSERT_DOUBLE_EQUAL(pos0[i], pos1[i], 0.002);
+    CU_ASSERT(0.5 * (1.0 - n1[2]) > 0.9);
+    CU_ASSERT(q1[ST_DOF_TORSO_PITCH] - q0[ST_DOF_TORSO_PITCH] > 0.2);
+    CU_ASSERT(q0[ST_DOF_WRIST_PROSUP] - q1[ST_DOF_WRIST_PROSUP] > 0.15);
+    CU_ASSERT(q0[ST_DOF_WRIST_PITCH] - q1[ST_DOF_WRIST_PITCH] > 0.05);
+    CU_ASSERT(!s1.c.arm_table);
+  }
+  fixture_close(&f);
+}
+
 static void test_postures_move(void) {
   fixture f;
   CU_ASSERT_FATAL(fixture_open(&f));
@@ -483,6 +514,7 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_postures_grasp);
   ST_ADD_TEST(test_postures_grasp_ball_x);
   ST_ADD_TEST(test_postures_grasp_gap);
+  ST_ADD_TEST(test_postures_ik_start);
   ST_ADD_TEST(test_postures_move);
   ST_ADD_TEST(test_posture_check_rejects);
   ST_ADD_TEST(test_posture_errors);

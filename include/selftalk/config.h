@@ -142,6 +142,9 @@ extern "C" {
   REAL(postures, move_oppose, 0.8, 0.0, 1.0, "move: thumb opposition, normalised (0.8: holds the ball for 3 s in dynamic mode; 0.5 let it fall)") \
   REAL(postures, move_squeeze, 0.02, 0.0, 1.0, "move: extra flexion after the thumb and fingers first touch the ball (grip)") \
   INT(postures, move_min_fingers, 3, 1, 4, "move: fingers close until this many fingertips (besides the thumb) touch the ball") \
+  REAL(postures, ik_torso_pitch, 0.0, -22.0, 70.0, "open, grasp, move: torso pitch the inverse kinematics starts from, deg (it keeps close to it: the solution is the arm configuration near this start)") \
+  REAL(postures, ik_wrist_prosup, 80.0, -90.0, 90.0, "open, grasp, move: wrist pronation-supination the inverse kinematics starts from, deg") \
+  REAL(postures, ik_wrist_pitch, -30.0, -90.0, 0.0, "open, grasp, move: wrist pitch the inverse kinematics starts from, deg") \
   ENUM(dynamics, solver, 1, "quickstep|step", "ODE stepper: quickstep (iterative; its constraint shuffling uses a per-thread generator seeded per trial) or step (direct, slower)") \
   REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \
   INT(dynamics, iterations, 20, 1, 1000, "quickstep solver iterations per sub-step") \

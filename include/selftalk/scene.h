@@ -37,6 +37,7 @@ typedef struct stPostureDef {
   double move_oppose;
   double move_squeeze;
   int move_min_fingers;
+  double ik_torso_pitch, ik_wrist_prosup, ik_wrist_pitch; /* IK start of open, grasp, move, deg */
   int reach_max_steps;
   double reach_height; /* fitness.reach_height: the reach point above the object centre */
 } stPostureDef;

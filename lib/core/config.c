@@ -153,6 +153,8 @@ static const stageKey g_stage_keys[] = {
      "a post-evaluation starts every trial from the reach postures"},
     {"postures", "move_*", S_ | M_, "the integrated stage starts every trial from the reach postures",
      "a post-evaluation starts every trial from the reach postures"},
+    {"postures", "ik_*", S_ | M_, "the integrated stage starts every trial from the reach postures",
+     "a post-evaluation starts every trial from the reach postures"},
     {"caretaker", "*", I_ | PI_ | PG_, "the caretaker speaks in the integrated stage only", NO_CARETAKER},
     {"integrated", "steps", I_ | PI_ | PR_, "it defines the integrated stage",
      "the generalisation test's trials last posteval.generalisation_steps"},

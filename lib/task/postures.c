@@ -118,7 +118,13 @@ static int place_palm_over_ball(const stRobot *r, const stScene *s, int k, const
   memcpy(t.point, ball, sizeof t.point);
   static const double normal[3] = {0, 0, 1}, down[3] = {0, 0, -1};
   st_ik_target_align(&t, 0, normal, down, NORMAL_WEIGHT);
-  start_posture(r, START_DEG, q);
+  /* the palm pose leaves the arm configuration open: the solver ends near where it starts */
+  double deg[9];
+  memcpy(deg, START_DEG, sizeof deg);
+  deg[ST_DOF_WRIST_PROSUP] = s->posture.ik_wrist_prosup;
+  deg[ST_DOF_WRIST_PITCH] = s->posture.ik_wrist_pitch;
+  start_posture(r, deg, q);
+  q[ST_DOF_TORSO_PITCH] = st_robot_dof_qhat(r, ST_DOF_TORSO_PITCH, s->posture.ik_torso_pitch * ST_DEG);
   return ik_run(r, &def, &t, q, what, k, err, errsz);
 }
 
@@ -248,7 +254,10 @@ static const char *posture_keys(int prim, int k) {
 static void name_keys(int prim, int k, char *err, size_t errsz) {
   if (!err || !errsz) return;
   const size_t n = strlen(err);
-  snprintf(err + n, errsz - n, " [keys: %s]", posture_keys(prim, k));
+  snprintf(err + n, errsz - n, " [keys: %s%s]", posture_keys(prim, k),
+           prim == ST_PRIM_REACH ? ""
+                                 : ", postures.ik_torso_pitch, postures.ik_wrist_prosup, "
+                                   "postures.ik_wrist_pitch");
 }
 
 stStatus st_posture(const stRobot *r, const stScene *s, int prim, int k, double qhat[ST_NDOF],

@@ -56,6 +56,9 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
   s->posture.move_oppose = c->postures_move_oppose;
   s->posture.move_squeeze = c->postures_move_squeeze;
   s->posture.move_min_fingers = c->postures_move_min_fingers;
+  s->posture.ik_torso_pitch = c->postures_ik_torso_pitch;
+  s->posture.ik_wrist_prosup = c->postures_ik_wrist_prosup;
+  s->posture.ik_wrist_pitch = c->postures_ik_wrist_pitch;
   s->posture.reach_max_steps = c->postures_reach_max_steps;
   s->posture.reach_height = c->fitness_reach_height;
 }
