@@ -90,6 +90,8 @@ for delay in 0.05 0.3 0.45; do
   sleep $delay
   kill -9 $pid 2>/dev/null
   wait $pid 2>/dev/null
+  # what a kill -9 between a temporary file's open and its rename leaves: the resume removes it
+  [ -d "$tmp/k" ] && touch "$tmp/k/checkpoint.tmp.999999" "$tmp/k/fitness.csv.tmp.1"
   "$EV" $cfg --seed 11 --generations $G --threads 2 --out "$tmp/k" --resume > "$tmp/k.log" 2>&1 &
   pid=$!
   sleep 0.2

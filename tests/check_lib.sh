@@ -9,10 +9,11 @@ ok() { echo "$CHECK: $1 ok"; pass=$((pass + 1)); }
 ko() { echo "$CHECK: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
 
 # the five files of two run directories are identical
-same_files() { # DIR1 DIR2
+same_files() { # DIR1 DIR2: the five files byte for byte, and no temporary file left in DIR2
   for f in config.ini fitness.csv best.genome population.genome checkpoint; do
     cmp -s "$1/$f" "$2/$f" || { echo "  $f differs between $1 and $2"; return 1; }
   done
+  if ls "$2" | grep -q '\.tmp\.'; then echo "  temporary files left in $2: $(ls "$2")"; return 1; fi
 }
 
 # CMD fails, its stderr names NEEDLE, and no fitness.csv appeared in DIR (refused before any work)

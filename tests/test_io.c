@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: MIT
  * The bounded reader every input file goes through (selftalk/io.h): content, the size limit,
  * devices that never end, directories, and NUL bytes in text (issue 17). */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "selftalk/io.h"
 #include "test_util.h"
@@ -61,6 +63,36 @@ static void test_io_read_refusals(void) {
   CU_ASSERT_STRING_EQUAL(err, "/nonexistent/f: cannot open: No such file or directory");
 }
 
+static int exists(const char *dir, const char *name) {
+  char p[512];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  return access(p, F_OK) == 0;
+}
+
+/* st_atomic_clean removes what killed writers of one file left ("<file>.tmp.<pid>"), not this
+ * process's own temporary, not other files' and not names that only look alike */
+static void test_io_atomic_clean(void) {
+  char dir[256], own[64], path[320];
+  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_tmpdir(dir, sizeof dir));
+  snprintf(own, sizeof own, "f.csv.tmp.%ld", (long)getpid());
+  const char *names[] = {"f.csv", "f.csv.tmp.12", "f.csv.tmp.999999", own, "f.csv.tmp.",
+                         "f.csv.tmp.1x", "f.csv.tmpx.3", "g.csv.tmp.12", "xf.csv.tmp.12"};
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+    snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+    FILE *f = fopen(path, "w");
+    CU_ASSERT_PTR_NOT_NULL_FATAL(f);
+    fclose(f);
+  }
+  snprintf(path, sizeof path, "%s/f.csv", dir);
+  CU_ASSERT_EQUAL(st_atomic_clean(path), 2);
+  CU_ASSERT(!exists(dir, "f.csv.tmp.12") && !exists(dir, "f.csv.tmp.999999"));
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+    if (strcmp(names[i], "f.csv.tmp.12") && strcmp(names[i], "f.csv.tmp.999999"))
+      CU_ASSERT(exists(dir, names[i]));
+  CU_ASSERT_EQUAL(st_atomic_clean(path), 0);
+  CU_ASSERT_EQUAL(st_atomic_clean("/nonexistent/dir/f.csv"), -1);
+}
+
 static void test_io_text_check(void) {
   char err[256] = "";
   CU_ASSERT_EQUAL(st_text_check("t", "ab\ncd", 5, err, sizeof err), ST_OK);
@@ -92,6 +124,7 @@ void st_suite_io(void) {
   ST_ADD_TEST(test_io_read);
   ST_ADD_TEST(test_io_read_large);
   ST_ADD_TEST(test_io_read_refusals);
+  ST_ADD_TEST(test_io_atomic_clean);
   ST_ADD_TEST(test_io_text_check);
   ST_ADD_TEST(test_io_text_read);
 }

@@ -55,6 +55,12 @@ stStatus st_atomic_commit(stAtomicFile *af, char *err, size_t errsz);
 /* Closes and removes the temporary file; path is untouched. */
 void st_atomic_abort(stAtomicFile *af);
 
+/* Removes "<path>.tmp.<digits>" files that a writer killed between open and commit left
+ * beside path (a kill -9 cannot be cleaned up after), except this process's own. For a run
+ * starting or resuming in its directory: one writer per directory. Returns how many were
+ * removed, or -1 (errno set) when the directory cannot be read. */
+int st_atomic_clean(const char *path);
+
 #ifdef __cplusplus
 }
 #endif

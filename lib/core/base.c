@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -202,6 +203,32 @@ stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t er
     return ST_ERR_IO;
   }
   return ST_OK;
+}
+
+int st_atomic_clean(const char *path) {
+  char dir[ST_PATH_MAX];
+  st__strlcpy(dir, path, sizeof dir);
+  char *slash = strrchr(dir, '/');
+  const char *base = slash ? slash + 1 : path;
+  if (slash) *slash = '\0';
+  if (slash == dir) st__strlcpy(dir, "/", sizeof dir);
+  DIR *d = opendir(slash ? dir : ".");
+  if (!d) return -1;
+  char own[32];
+  snprintf(own, sizeof own, "%ld", (long)getpid());
+  const size_t nb = strlen(base);
+  int removed = 0;
+  for (struct dirent *e; (e = readdir(d)) != NULL;) {
+    const char *n = e->d_name;
+    if (strncmp(n, base, nb) != 0 || strncmp(n + nb, ".tmp.", 5) != 0) continue;
+    const char *pid = n + nb + 5;
+    if (!*pid || strspn(pid, "0123456789") != strlen(pid) || strcmp(pid, own) == 0) continue;
+    char full[2 * ST_PATH_MAX];
+    snprintf(full, sizeof full, "%s/%s", slash ? dir : ".", n);
+    if (remove(full) == 0) removed++;
+  }
+  closedir(d);
+  return removed;
 }
 
 /* the step of a commit that failed, for the message */

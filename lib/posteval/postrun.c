@@ -404,6 +404,16 @@ static stStatus prepare(postRun *R, char *err, size_t errsz) {
   return ST_OK;
 }
 
+/* the temporary files of DIR's four files that a test killed mid-write left */
+static void remove_stale_tmp(const postRun *R) {
+  static const char *const names[] = {"config.ini", "trials.csv", "summary.csv", ST_POST_JOURNAL};
+  char path[ST_PATH_MAX + 32];
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+    snprintf(path, sizeof path, "%s/%s", R->def->out_dir, names[i]);
+    st_atomic_clean(path);
+  }
+}
+
 /* DIR/posteval.journal: a test killed before its end continues with --resume; one already
  * there without --resume is refused (nothing is overwritten); a complete journal re-writes the
  * same files */
@@ -415,13 +425,15 @@ static stStatus open_journal(postRun *R, char *err, size_t errsz) {
   R->journal_every = d->journal_seconds > 0 ? d->journal_seconds
                      : d->journal_seconds < 0 ? 0.0 : ST_POST_JOURNAL_SECONDS;
   if (access(R->journal, F_OK) != 0) {
-    if (errno == ENOENT) return ST_OK;
-    return st__errf(err, errsz, "%s: %s", R->journal, strerror(errno)), ST_ERR_IO;
+    if (errno != ENOENT) return st__errf(err, errsz, "%s: %s", R->journal, strerror(errno)), ST_ERR_IO;
+    remove_stale_tmp(R);
+    return ST_OK;
   }
   if (!d->resume)
     return st__errf(err, errsz, "%s holds a post-evaluation (%s): give --resume to continue it "
                     "(or re-write its files), or choose another --out", d->out_dir, R->journal),
            ST_ERR_ARG;
+  remove_stale_tmp(R);
   const long units = (long)R->nind * R->pd.trials;
   stStatus st = st__post_journal_read(R->journal, R->fingerprint, units, R->unit_done, R->res,
                                       &R->resumed, err, errsz);

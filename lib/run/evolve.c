@@ -232,6 +232,12 @@ static stStatus start_files(run *R, char *err, size_t errsz) {
   return ST_OK;
 }
 
+/* the temporary files a run killed mid-write left (accepted runs only: a refused one changes
+ * nothing in the directory) */
+static void remove_stale_tmp(const run *R) {
+  for (int i = 0; i < P_PROBE; i++) st_atomic_clean(R->path[i]);
+}
+
 /* the run in the directory must have been made with the same configuration (threads aside) */
 static stStatus same_config(run *R, char *err, size_t errsz) {
   stConfig old, cur = *R->cfg;
@@ -564,6 +570,7 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   if (def->resume && !have_ckpt && def->progress)
     fprintf(def->progress, "evolve: no checkpoint in %s: starting fresh\n", def->out_dir);
   if (have_ckpt) st = read_resume(&R, &ck, err, errsz);
+  if (!st) remove_stale_tmp(&R);
   const int todo = !st && !ck.done;
   if (todo) st = start_population(&R, &ck, have_ckpt, err, errsz);
   if (todo && !st) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
