@@ -425,15 +425,13 @@ static stStatus open_journal(postRun *R, char *err, size_t errsz) {
   R->journal_every = d->journal_seconds > 0 ? d->journal_seconds
                      : d->journal_seconds < 0 ? 0.0 : ST_POST_JOURNAL_SECONDS;
   if (access(R->journal, F_OK) != 0) {
-    if (errno != ENOENT) return st__errf(err, errsz, "%s: %s", R->journal, strerror(errno)), ST_ERR_IO;
-    remove_stale_tmp(R);
-    return ST_OK;
+    if (errno == ENOENT) return ST_OK;
+    return st__errf(err, errsz, "%s: %s", R->journal, strerror(errno)), ST_ERR_IO;
   }
   if (!d->resume)
     return st__errf(err, errsz, "%s holds a post-evaluation (%s): give --resume to continue it "
                     "(or re-write its files), or choose another --out", d->out_dir, R->journal),
            ST_ERR_ARG;
-  remove_stale_tmp(R);
   const long units = (long)R->nind * R->pd.trials;
   stStatus st = st__post_journal_read(R->journal, R->fingerprint, units, R->unit_done, R->res,
                                       &R->resumed, err, errsz);
@@ -595,6 +593,7 @@ stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz) {
   if (!st) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
   if (!st) st = prepare(&R, err, errsz);
   if (!st) st = open_journal(&R, err, errsz);
+  if (!st) remove_stale_tmp(&R); /* accepted: what a killed test left goes, nothing else */
   if (!st) st = run_trials(&R, err, errsz);
   if (!st) st = write_files(&R, err, errsz);
   if (!st) finish_line(&R);

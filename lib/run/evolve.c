@@ -570,11 +570,11 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   if (def->resume && !have_ckpt && def->progress)
     fprintf(def->progress, "evolve: no checkpoint in %s: starting fresh\n", def->out_dir);
   if (have_ckpt) st = read_resume(&R, &ck, err, errsz);
-  if (!st) remove_stale_tmp(&R);
   const int todo = !st && !ck.done;
   if (todo) st = start_population(&R, &ck, have_ckpt, err, errsz);
   if (todo && !st) st = st_protocol_create(R.cfg, &R.proto, err, errsz);
   if (todo && !st) st = allocate(&R, err, errsz);
+  if (!st) remove_stale_tmp(&R); /* accepted: what a killed run left goes */
   if (todo && !st) st = have_ckpt ? rewind_files(&R, &ck, err, errsz) : start_files(&R, err, errsz);
   st__checkpoint_free(&ck);
   R.t_start = now();
