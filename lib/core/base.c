@@ -212,7 +212,8 @@ int st_atomic_clean(const char *path) {
   const char *base = slash ? slash + 1 : path;
   if (slash) *slash = '\0';
   if (slash == dir) st__strlcpy(dir, "/", sizeof dir);
-  DIR *d = opendir(slash ? dir : ".");
+  const char *where = slash ? dir : ".";
+  DIR *d = opendir(where);
   if (!d) return -1;
   char own[32];
   snprintf(own, sizeof own, "%ld", (long)getpid());
@@ -224,7 +225,7 @@ int st_atomic_clean(const char *path) {
     const char *pid = n + nb + 5;
     if (!*pid || strspn(pid, "0123456789") != strlen(pid) || strcmp(pid, own) == 0) continue;
     char full[2 * ST_PATH_MAX];
-    snprintf(full, sizeof full, "%s/%s", slash ? dir : ".", n);
+    snprintf(full, sizeof full, "%s/%s", where, n);
     if (remove(full) == 0) removed++;
   }
   closedir(d);

@@ -404,12 +404,16 @@ static stStatus prepare(postRun *R, char *err, size_t errsz) {
   return ST_OK;
 }
 
-/* the temporary files of DIR's four files that a test killed mid-write left */
+/* DIR's files: the three written at the end (write_files), then the journal */
+static const char *const g_out_names[] = {"config.ini", "trials.csv", "summary.csv",
+                                          ST_POST_JOURNAL};
+#define N_RESULT_FILES 3
+
+/* the temporary files of DIR's files that a test killed mid-write left */
 static void remove_stale_tmp(const postRun *R) {
-  static const char *const names[] = {"config.ini", "trials.csv", "summary.csv", ST_POST_JOURNAL};
   char path[ST_PATH_MAX + 32];
-  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
-    snprintf(path, sizeof path, "%s/%s", R->def->out_dir, names[i]);
+  for (size_t i = 0; i < sizeof g_out_names / sizeof g_out_names[0]; i++) {
+    snprintf(path, sizeof path, "%s/%s", R->def->out_dir, g_out_names[i]);
     st_atomic_clean(path);
   }
 }
@@ -545,9 +549,8 @@ static stStatus write_file(const char *dir, const char *name, const postRun *R, 
 }
 
 static stStatus write_files(const postRun *R, char *err, size_t errsz) {
-  static const char *const names[] = {"config.ini", "trials.csv", "summary.csv"};
-  for (int i = 0; i < 3; i++) {
-    stStatus st = write_file(R->def->out_dir, names[i], R, err, errsz);
+  for (int i = 0; i < N_RESULT_FILES; i++) {
+    stStatus st = write_file(R->def->out_dir, g_out_names[i], R, err, errsz);
     if (st) return st;
   }
   return ST_OK;

@@ -51,9 +51,11 @@ static const double REACH_PALM_OFFSET[ST_NPOSTURE][3] = {
 /* move: the ball held (kinematic construction; the dynamic hold is checked in dynamic mode) */
 #define MOVE_CLOSE_STEP 0.01   /* thumb, then fingers, close on this grid until they touch */
 
-/* IK: start posture of the object-relative postures (degrees), mobility of the torso relative
- * to the arm (the arm does most of the work), alignment weight of the palm normal */
-static const double START_DEG[9] = {0, 0, -40, 30, 0, 90, 80, -30, 0};
+/* IK: start posture of the object-relative postures (degrees; the torso pitch and the wrist's
+ * pronation and pitch come from postures.ik_*, whose defaults are 0, 80 and -30), mobility of
+ * the torso relative to the arm (the arm does most of the work), alignment weight of the palm
+ * normal */
+static const double START_DEG[9] = {0, 0, -40, 30, 0, 90, 0, 0, 0};
 #define TORSO_WEIGHT 0.25
 #define NORMAL_WEIGHT 0.01 /* 1 rad of palm-normal error costs like 0.1 m of position */
 

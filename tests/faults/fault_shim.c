@@ -42,8 +42,9 @@ int rename(const char *from, const char *to) {
   if (!real) *(void **)&real = dlsym(RTLD_NEXT, "rename");
   int rc = real(from, to), e = errno;
   const char *slow = getenv("ST_FAULT_SLOW_RENAME_MS");
-  if (slow && atol(slow) > 0) { /* after the rename: the file is whole, no temporary is left */
-    struct timespec ts = {atol(slow) / 1000, (atol(slow) % 1000) * 1000000L};
+  const long ms = slow ? atol(slow) : 0;
+  if (ms > 0) { /* after the rename: the file is whole, no temporary is left */
+    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
     while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
     }
   }
