@@ -32,6 +32,12 @@ draw fig3_5 fig_int_fitness.py "$FIG/integrated_fitness.csv" "$tmp/int" --label 
   "hand-made: fitness" "hand-made: bonus" "hand-made: bonus without the caretaker" "tiny ST-CT: fitness" "ST-CT"
 has fig3_5 "fig_int_fitness: $FIG/integrated_fitness.csv: 4 generations, best 260, last bonus 200 (without the caretaker 80)"
 grep -q "^fig_int_fitness: $tmp/int/fitness.csv: 2 generations" "$tmp/fig3_5.out" && ok "fig3_5: reads evolve's integrated fitness.csv" || ko "fig3_5 real run" "$(cat "$tmp/fig3_5.out")"
+# --panel: the three runs in two panels, in order of first appearance
+draw fig3_5p fig_int_fitness.py "$FIG/integrated_fitness.csv" "$tmp/int" "$FIG/integrated_fitness.csv" \
+  --label "hand-made" --label "tiny" --label "again" --panel "ST-CT" --panel "NI" --panel "ST-CT" -- \
+  "ST-CT" "NI" "hand-made: fitness" "tiny: fitness" "again: fitness"
+has fig3_5p "fig_int_fitness: 2 panels: ST-CT (2 runs), NI (1 run)"
+refuses "fig3_5: a --panel per run" "2 --panel for 1 runs (expected one per run)" fig_int_fitness.py "$FIG/integrated_fitness.csv" --panel a --panel b
 sed 's/best_bonus_auto/best_auto/' "$FIG/integrated_fitness.csv" > "$tmp/i1.csv"
 refuses "fig3_5: a missing column" "$tmp/i1.csv:1: header without best_bonus_auto" fig_int_fitness.py "$tmp/i1.csv"
 sed '3s/,100,20,/,100,20/' "$FIG/integrated_fitness.csv" > "$tmp/i2.csv"
