@@ -5,7 +5,9 @@
  *
  * One input row per line (25 numbers for base, 26 for A/B with the secondary linguistic input
  * last); one output row per line (13 outputs, plus the 4 emitted linguistic values for A/B),
- * in full precision. Network state persists from line to line, as within one trial. */
+ * in full precision. Network state persists from line to line, as within one trial. A line is
+ * at most NETEVAL_LINE_MAX bytes and holds no NUL byte (stdin is a stream, so it is read line by
+ * line, bounded, not through st_text_read). */
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <errno.h>
@@ -19,6 +21,26 @@
 #include "selftalk/net.h"
 
 static const char *prog = "neteval";
+
+/* 26 numbers at full precision take under 700 bytes; this leaves room for any spacing */
+#define NETEVAL_LINE_MAX 65536
+
+/* Reads one line of stdin into buf (NUL-terminated, newline dropped): 1 on a line, 0 at the end
+ * of input; a line longer than NETEVAL_LINE_MAX bytes or holding a NUL byte is refused. */
+static int read_line(char *buf, long lineno) {
+  size_t n = 0;
+  int ch;
+  while ((ch = getchar()) != EOF && ch != '\n') {
+    if (ch == 0) app_die(prog, "stdin:%ld: NUL byte at column %zu", lineno, n + 1);
+    if (n == NETEVAL_LINE_MAX)
+      app_die(prog, "stdin:%ld: line longer than %d bytes (expected one row of numbers)", lineno,
+              NETEVAL_LINE_MAX);
+    buf[n++] = (char)ch;
+  }
+  if (ch == EOF && ferror(stdin)) app_die(prog, "stdin:%ld: read error", lineno);
+  buf[n] = 0;
+  return ch != EOF || n > 0;
+}
 
 static void usage(FILE *f) {
   fprintf(f,
@@ -79,10 +101,9 @@ int main(int argc, char **argv) {
   st_net_reset(&params, &state);
   int nin = st_net_ninputs((stNetArch)arch), nout = st_net_noutputs((stNetArch)arch);
   double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT];
-  char *line = NULL;
-  size_t cap = 0;
+  static char line[NETEVAL_LINE_MAX + 1];
   long lineno = 0;
-  while (getline(&line, &cap, stdin) >= 0) {
+  while (read_line(line, lineno + 1)) {
     lineno++;
     char *p = line;
     int n = 0;
@@ -112,7 +133,6 @@ int main(int argc, char **argv) {
     for (int k = 0; k < nout; k++) printf(k ? " %.17g" : "%.17g", out[k]);
     putchar('\n');
   }
-  free(line);
   if (fflush(stdout) || ferror(stdout)) app_die(prog, "write error on stdout");
   return 0;
 }

@@ -52,6 +52,19 @@ expect_fail "short row" "stdin:1: 2 numbers (expected 25 for architecture base)"
 expect_fail "non-number" "stdin:4: field 25 'abc' is not a number" \
   sh -c "'$APPDIR/neteval' '$tmp/g.genome' < '$tmp/nan'"
 
+printf '0 0 0\0 0 0\n' > "$tmp/nul"
+expect_fail "NUL byte in a row" "stdin:1: NUL byte at column 6" \
+  sh -c "'$APPDIR/neteval' '$tmp/g.genome' < '$tmp/nul'"
+{ head -c 70000 /dev/zero | tr '\0' ' '; echo; } > "$tmp/long"
+expect_fail "endless row" "stdin:1: line longer than 65536 bytes" \
+  sh -c "'$APPDIR/neteval' '$tmp/g.genome' < '$tmp/long'"
+# the last row needs no newline
+if [ "$(head -c -1 "$tmp/rows" | "$APPDIR/neteval" "$tmp/g.genome" | wc -l)" = 3 ]; then
+  echo "check_apps: last row without a newline ok"; pass=$((pass + 1))
+else
+  echo "check_apps: last row without a newline FAILED"; fail=$((fail + 1))
+fi
+
 # a good config and override are accepted, and lambda changes the output
 a=$("$APPDIR/neteval" "$tmp/g.genome" --config "$tmp/good.cfg" < "$tmp/rows" | head -1)
 b=$("$APPDIR/neteval" "$tmp/g.genome" --set network.lambda=3 < "$tmp/rows" | head -1)
