@@ -252,6 +252,9 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
                              traceCtx *trace) {
   stTrialSpec t;
   st_trial_spec(p, stage, generation, trial, &t);
+  if (t.start_draws)
+    fprintf(stderr, "replay: postures.vary_starts: the %s start drawn for generation %d (draw %d)\n",
+            st_primitive_name(t.primitive), generation, t.start_draws);
   trace->arch = np->arch;
   stWorkspace ws = {NULL, NULL};
   stTrialResult r;

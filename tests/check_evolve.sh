@@ -112,6 +112,39 @@ else
   grep -q "config.ini differs" "$tmp/diff.log" && ok "resume with another config refused" || ko "resume refused" "$(cat "$tmp/diff.log")"
 fi
 
+# postures.vary_starts: main-prim open and grasp trials from drawn starts; thread-independent,
+# replayed trial by trial from the same draws (the harmonic mean of F_open and F_grasp and the
+# successes of the csv's last row), and other results than the fixed starts give
+vary=(--generations 2 --seed 11 --set ga.population=4 --set ga.elites=1 --set ga.parents=2
+      --set ga.success_genotypes=4 --set stage.primitives=open,grasp)
+"$EV" configs/main_prim.cfg "${vary[@]}" --set postures.vary_starts=true --threads 1 --out "$tmp/v1" > "$tmp/v1.log" 2>&1
+"$EV" configs/main_prim.cfg "${vary[@]}" --set postures.vary_starts=true --threads 2 --out "$tmp/v2" > "$tmp/v2.log" 2>&1
+"$EV" configs/main_prim.cfg "${vary[@]}" --threads 2 --out "$tmp/v0" > "$tmp/v0.log" 2>&1
+for k in 4 5 6 7 8 9 10 11; do
+  "$APPDIR/replay" "$tmp/v1/population.genome" "$tmp/v1/config.ini" --trial $k --generation 1
+done > "$tmp/vreplay.txt" 2> "$tmp/vreplay.err"
+if same_files "$tmp/v1" "$tmp/v2" && ! cmp -s "$tmp/v1/fitness.csv" "$tmp/v0/fitness.csv" &&
+   [ "$(grep -c 'vary_starts: the \(open\|grasp\) start drawn for generation 1 (draw [0-9]*)' "$tmp/vreplay.err")" = 8 ] &&
+   grep -q '^vary_starts = true' "$tmp/v1/config.ini" &&
+   python3 - "$tmp/vreplay.txt" "$tmp/v1/fitness.csv" <<'PY'
+import csv, re, sys
+fp, succ = [0.0, 0.0], []
+for line in open(sys.argv[1]):
+    k = int(line.split()[1])
+    fp[k // 4 - 1] += float(re.search(r"F_contribution=(\S+)", line).group(1))
+    succ.append(int(re.search(r"success=(\d)", line).group(1)))
+F = 2 / sum(1 / max(x, 0.001) for x in fp)
+row = list(csv.DictReader(open(sys.argv[2])))[-1]
+want = [int(row["best_t%d" % t]) for t in range(4, 12)]
+print("replay F %.6f vs csv %s, successes %s vs %s" % (F, row["best"], succ, want))
+sys.exit(0 if succ == want and abs(F - float(row["best"])) < 1e-4 else 1)
+PY
+then
+  ok "postures.vary_starts: threads 1 = 2, replayed from the same draws, other results than fixed starts"
+else
+  ko "postures.vary_starts" "$(tail -2 "$tmp/v1.log") $(cat "$tmp/vreplay.txt" "$tmp/vreplay.err" | tail -3)"
+fi
+
 # trials the simulation gives up on are reported: with a speed limit of 1 mm/s every one of the
 # 4 genotypes x 4 grasp trials diverges (the --set options also check population-dependent
 # rules only once all are in: population=4 comes before elites=1)

@@ -127,6 +127,19 @@ static void test_config_errors(void) {
   expect_error("[ga]\nelites = 30\n\npopulation = 20\n", ST_ERR_RANGE,
                ":2: key 'ga.elites': 30 exceeds ga.population = 20 (expected elites <= population)");
   expect_error("[ga]\nelites = \n", ST_ERR_PARSE, ":2: key 'ga.elites': '' is not an integer");
+  /* a postures.vary_* key without the drawn starts would do nothing */
+  expect_error("[postures]\nvary_draws = 5\n\nvary_tilt = 10\n", ST_ERR_RANGE,
+               ":4: key 'postures.vary_tilt': it shapes the drawn starts, which "
+               "postures.vary_starts = false turns off (expected postures.vary_starts = true, or "
+               "the key left out)");
+  {
+    char path[256], e[1024];
+    st_test_write_tmp(path, sizeof path, ".cfg", "[postures]\nvary_tilt = 10\nvary_starts = true\n");
+    stConfig v;
+    st_config_default(&v);
+    CU_ASSERT_EQUAL(st_config_load(path, &v, e, sizeof e), ST_OK);
+    CU_ASSERT(v.postures_vary_starts == 1 && v.postures_vary_tilt == 10.0);
+  }
   expect_error("[stage]\nprimitives = reach,grasp,lift\n", ST_ERR_RANGE,
                ":2: key 'stage.primitives': 'reach,grasp,lift' is not a list of primitives "
                "(expected a comma-separated subset of reach,open,grasp,move)");

@@ -4,10 +4,13 @@
  * data/icub_left_arm.urdf. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "selftalk/config.h"
 #include "selftalk/ik.h"
 #include "selftalk/postures.h"
 #include "selftalk/sensors.h"
+#include "selftalk/trial.h"
 #include "selftalk/world.h"
 #include "test_util.h"
 
@@ -420,6 +423,157 @@ static void test_postures_ik_start(void) {
   fixture_close(&f);
 }
 
+/* postures.vary_starts, the variation itself: none gives st_posture's posture bit for bit; an
+ * offset moves the palm by that much along its own x axis; a tilt of 20 deg towards world +x
+ * gives p = (1 + cos 20 deg) / 2 = 0.96985 and a palm normal x of sin 20 deg = 0.342 (the IK
+ * aligns within 1 deg: p within 0.9668..0.9728); the IK start (20, 0, -45) gives the posture
+ * the postures.ik_* keys give */
+static void test_postures_varied(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  char err[512];
+  for (int prim = ST_PRIM_OPEN; prim <= ST_PRIM_GRASP; prim++)
+    for (int k = 0; k < ST_NPOSTURE; k++) {
+      double q0[ST_NDOF], q1[ST_NDOF];
+      stPostureVariation v;
+      st_posture_variation_none(&f.scene, &v);
+      CU_ASSERT_EQUAL_FATAL(st_posture(f.robot, &f.scene, prim, k, q0, err, sizeof err), ST_OK);
+      CU_ASSERT_EQUAL_FATAL(st_posture_varied(f.robot, &f.scene, prim, k, &v, q1, err, sizeof err), ST_OK);
+      CU_ASSERT(memcmp(q0, q1, sizeof q0) == 0);
+    }
+  /* grasp k=0: 1 cm towards the wrist (towards the fingers, the opposed thumb touches the ball) */
+  double q0[ST_NDOF], q1[ST_NDOF], pos0[3], pos1[3], n0[3], n1[3];
+  stPostureVariation v;
+  st_posture_variation_none(&f.scene, &v);
+  CU_ASSERT_EQUAL_FATAL(st_posture(f.robot, &f.scene, ST_PRIM_GRASP, 0, q0, err, sizeof err), ST_OK);
+  v.dx = -0.01;
+  CU_ASSERT_EQUAL_FATAL(st_posture_varied(f.robot, &f.scene, ST_PRIM_GRASP, 0, &v, q1, err, sizeof err), ST_OK);
+  palm_pose(f.robot, q0, pos0, n0);
+  palm_pose(f.robot, q1, pos1, n1);
+  double(*R)[9] = malloc(sizeof(double[9]) * (size_t)f.robot->nbody);
+  double(*P)[3] = malloc(sizeof(double[3]) * (size_t)f.robot->nbody);
+  st_robot_fk(f.robot, q1, R, P);
+  double along = 0.0; /* the move along the palm's x axis (R's first column) */
+  for (int i = 0; i < 3; i++) along += (pos1[i] - pos0[i]) * R[f.robot->palm_body][3 * i];
+  free(R);
+  free(P);
+  CU_ASSERT_DOUBLE_EQUAL(along, -0.01, 0.002);
+  CU_ASSERT_DOUBLE_EQUAL(pos1[2], pos0[2], 0.002);
+  CU_ASSERT_DOUBLE_EQUAL(dist3(pos0, pos1), 0.01, 0.002);
+  /* open k=2: tilted 20 deg towards +x */
+  st_posture_variation_none(&f.scene, &v);
+  v.tilt = 20.0 * DEG;
+  CU_ASSERT_EQUAL_FATAL(st_posture_varied(f.robot, &f.scene, ST_PRIM_OPEN, 2, &v, q1, err, sizeof err), ST_OK);
+  palm_pose(f.robot, q1, pos1, n1);
+  CU_ASSERT_DOUBLE_EQUAL(0.5 * (1.0 - n1[2]), 0.96985, 0.003);
+  CU_ASSERT_DOUBLE_EQUAL(n1[0], 0.342, 0.018);
+  CU_ASSERT_DOUBLE_EQUAL(n1[1], 0.0, 0.018);
+  /* the IK start as the keys give it */
+  st_posture_variation_none(&f.scene, &v);
+  v.ik_deg[0] = 20.0, v.ik_deg[1] = 0.0, v.ik_deg[2] = -45.0;
+  CU_ASSERT_EQUAL_FATAL(st_posture_varied(f.robot, &f.scene, ST_PRIM_OPEN, 1, &v, q1, err, sizeof err), ST_OK);
+  stScene keyed = f.scene;
+  keyed.posture.ik_torso_pitch = 20.0, keyed.posture.ik_wrist_prosup = 0.0;
+  keyed.posture.ik_wrist_pitch = -45.0;
+  CU_ASSERT_EQUAL_FATAL(st_posture(f.robot, &keyed, ST_PRIM_OPEN, 1, q0, err, sizeof err), ST_OK);
+  CU_ASSERT(memcmp(q0, q1, sizeof q0) == 0);
+  /* a variation that breaks a SPEC 8 property is refused: grasp's palm point 3 cm from the
+   * ball (expected <= 2 cm); reach and move are never varied */
+  st_posture_variation_none(&f.scene, &v);
+  v.dy = 0.03;
+  CU_ASSERT_EQUAL(st_posture_varied(f.robot, &f.scene, ST_PRIM_GRASP, 1, &v, q1, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "from the ball horizontally (expected <= 0.02)");
+  CU_ASSERT_EQUAL(st_posture_varied(f.robot, &f.scene, ST_PRIM_MOVE, 1, &v, q1, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "expected open or grasp");
+  fixture_close(&f);
+}
+
+/* the draws: 4000 from the default ranges stay in them; a uniform disc of radius R has
+ * E[r^2] = R^2 / 2 = 2e-4 (sd of the mean of r^2: R^2 / sqrt(12) / sqrt(4000) = 2.3e-6); the
+ * tilt's mean is 10 deg, the IK starts' means are the ranges' midpoints (10, 40, -37.5) */
+static void test_postures_variation_draw(void) {
+  stConfig c;
+  st_config_default(&c);
+  stScene s;
+  st_scene_from_config(&c, &s);
+  stRng rng = st_rng_keyed(7, ST_RNG_STARTS, 3, 0, 1);
+  const int n = 4000;
+  double r2 = 0, tilt = 0, ik[3] = {0, 0, 0};
+  int out = 0;
+  for (int i = 0; i < n; i++) {
+    stPostureVariation v;
+    st_posture_variation_draw(&s, &rng, &v);
+    const double r = hypot(v.dx, v.dy);
+    out += r > 0.02 || v.tilt < 0 || v.tilt > 20.0 * DEG || v.azimuth < 0 || v.azimuth > 2 * 3.14159266;
+    out += v.ik_deg[0] < 0 || v.ik_deg[0] > 20 || v.ik_deg[1] < 0 || v.ik_deg[1] > 80;
+    out += v.ik_deg[2] < -45 || v.ik_deg[2] > -30;
+    r2 += r * r / n, tilt += v.tilt / DEG / n;
+    for (int j = 0; j < 3; j++) ik[j] += v.ik_deg[j] / n;
+  }
+  CU_ASSERT_EQUAL(out, 0);
+  CU_ASSERT_DOUBLE_EQUAL(r2, 2e-4, 1e-5);
+  CU_ASSERT_DOUBLE_EQUAL(tilt, 10.0, 0.5);
+  CU_ASSERT_DOUBLE_EQUAL(ik[0], 10.0, 0.5);
+  CU_ASSERT_DOUBLE_EQUAL(ik[1], 40.0, 2.0);
+  CU_ASSERT_DOUBLE_EQUAL(ik[2], -37.5, 0.4);
+}
+
+/* postures.vary_starts in the trials: off, every trial starts from the fixed posture
+ * (start_draws 0); on, open and grasp trials start from a drawn posture that st_posture_check
+ * accepts, other than the fixed one, the same for the same (generation, trial) and another in
+ * another generation; reach and move starts and every trial's offsets are unchanged. A draw no
+ * check accepts (grasp's palm point more than 2 cm from the ball: most offsets of up to 10 cm)
+ * leaves the fixed posture. */
+static void test_trial_varied_starts(void) {
+  stConfig c;
+  st_config_default(&c);
+  c.run_seed = 5;
+  stProtocol *fixed = NULL, *varied = NULL, *wide = NULL;
+  char err[512] = "", why[256];
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &fixed, err, sizeof err), ST_OK);
+  c.postures_vary_starts = 1;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &varied, err, sizeof err), ST_OK);
+  c.postures_vary_offset = 0.1, c.postures_vary_draws = 1;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &wide, err, sizeof err), ST_OK);
+  int drawn = 0, fallback = 0;
+  for (int gen = 0; gen < 2; gen++)
+    for (int i = 0; i < ST_PRIM_TRIALS; i++) {
+      stTrialSpec a, b, b2, b3, w;
+      st_trial_spec(fixed, ST_STAGE_MAIN, gen, i, &a);
+      st_trial_spec(varied, ST_STAGE_MAIN, gen, i, &b);
+      st_trial_spec(varied, ST_STAGE_MAIN, gen, i, &b2);
+      st_trial_spec(varied, ST_STAGE_MAIN, gen + 2, i, &b3);
+      st_trial_spec(wide, ST_STAGE_MAIN, gen, i, &w);
+      const int prim = a.primitive, k = a.k;
+      CU_ASSERT_EQUAL(a.start_draws, 0);
+      CU_ASSERT(memcmp(a.qhat0, fixed->posture[prim][k], sizeof a.qhat0) == 0);
+      CU_ASSERT(memcmp(&b, &b2, sizeof b) == 0);
+      CU_ASSERT(memcmp(a.obj, b.obj, sizeof a.obj) == 0 && memcmp(a.target, b.target, sizeof a.target) == 0);
+      CU_ASSERT(a.steps == b.steps && a.table_off_step == b.table_off_step);
+      if (prim == ST_PRIM_OPEN || prim == ST_PRIM_GRASP) {
+        CU_ASSERT(b.start_draws >= 1 && b.start_draws <= 20);
+        CU_ASSERT(st_posture_check(varied->robot, &varied->scene, prim, k, b.qhat0, why, sizeof why));
+        CU_ASSERT(memcmp(a.qhat0, b.qhat0, sizeof a.qhat0) != 0);
+        CU_ASSERT(memcmp(b.qhat0, b3.qhat0, sizeof b.qhat0) != 0);
+        drawn++;
+        if (w.start_draws == 0) {
+          CU_ASSERT(memcmp(w.qhat0, a.qhat0, sizeof a.qhat0) == 0);
+          fallback++;
+        } else {
+          CU_ASSERT_EQUAL(w.start_draws, 1);
+        }
+      } else {
+        CU_ASSERT(b.start_draws == 0 && w.start_draws == 0);
+        CU_ASSERT(memcmp(a.qhat0, b.qhat0, sizeof a.qhat0) == 0);
+      }
+    }
+  CU_ASSERT_EQUAL(drawn, 16);
+  CU_ASSERT(fallback >= 4);
+  st_protocol_destroy(fixed);
+  st_protocol_destroy(varied);
+  st_protocol_destroy(wide);
+}
+
 static void test_postures_move(void) {
   fixture f;
   CU_ASSERT_FATAL(fixture_open(&f));
@@ -515,6 +669,9 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_postures_grasp_ball_x);
   ST_ADD_TEST(test_postures_grasp_gap);
   ST_ADD_TEST(test_postures_ik_start);
+  ST_ADD_TEST(test_postures_varied);
+  ST_ADD_TEST(test_postures_variation_draw);
+  ST_ADD_TEST(test_trial_varied_starts);
   ST_ADD_TEST(test_postures_move);
   ST_ADD_TEST(test_posture_check_rejects);
   ST_ADD_TEST(test_posture_errors);

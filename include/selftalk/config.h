@@ -145,6 +145,13 @@ extern "C" {
   REAL(postures, ik_torso_pitch, 0.0, -22.0, 70.0, "open, grasp, move: torso pitch the inverse kinematics starts from, deg (it keeps close to it: the solution is the arm configuration near this start)") \
   REAL(postures, ik_wrist_prosup, 80.0, -90.0, 90.0, "open, grasp, move: wrist pronation-supination the inverse kinematics starts from, deg") \
   REAL(postures, ik_wrist_pitch, -30.0, -90.0, 0.0, "open, grasp, move: wrist pitch the inverse kinematics starts from, deg") \
+  BOOL(postures, vary_starts, 0, "open and grasp trials of the primitive stages start from postures drawn per generation and trial (docs/PROTOCOL.md, Varied starts); false: the fixed postures") \
+  REAL(postures, vary_offset, 0.02, 0.0, 0.1, "vary_starts: the palm moves horizontally, in its own frame, by up to this, m (uniform in a disc; the reach trials' object offset is +-2 cm)") \
+  REAL(postures, vary_tilt, 20.0, 0.0, 45.0, "vary_starts: the palm normal tilts from straight down by up to this, deg (angle uniform, direction uniform)") \
+  REAL(postures, vary_torso_pitch, 20.0, -22.0, 70.0, "vary_starts: the IK start's torso pitch is uniform between ik_torso_pitch and this, deg") \
+  REAL(postures, vary_wrist_prosup, 0.0, -90.0, 90.0, "vary_starts: the IK start's wrist pronation-supination is uniform between ik_wrist_prosup and this, deg") \
+  REAL(postures, vary_wrist_pitch, -45.0, -90.0, 0.0, "vary_starts: the IK start's wrist pitch is uniform between ik_wrist_pitch and this, deg") \
+  INT(postures, vary_draws, 20, 1, 1000, "vary_starts: draws per trial until one has the SPEC 8 properties; when none has, the trial starts from the fixed posture") \
   ENUM(dynamics, solver, 1, "quickstep|step", "ODE stepper: quickstep (iterative; its constraint shuffling uses a per-thread generator seeded per trial) or step (direct, slower)") \
   REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \
   INT(dynamics, iterations, 20, 1, 1000, "quickstep solver iterations per sub-step") \

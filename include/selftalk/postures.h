@@ -5,7 +5,8 @@
  *
  * Postures are computed, deterministically, by inverse kinematics (selftalk/ik.h) from the
  * scene's object positions, from fixed start postures; nothing random is involved and the
- * result depends only on the robot and the scene. Each call allocates a kinematic stWorld
+ * result depends only on the robot and the scene (st_posture_varied builds an open or grasp
+ * posture from a drawn variation instead: postures.vary_starts). Each call allocates a kinematic stWorld
  * (contact checks) and frees it before returning: call these at run or trial set-up, not in
  * a control loop (st_postures_all computes the 16 once).
  *
@@ -30,6 +31,7 @@
 #define SELFTALK_POSTURES_H
 
 #include "selftalk/fitness.h" /* the primitives: ST_PRIM_*, st_primitive_name */
+#include "selftalk/rng.h"
 #include "selftalk/robot.h"
 #include "selftalk/scene.h"
 
@@ -47,6 +49,32 @@ extern "C" {
  * names the posture and the reason. */
 stStatus st_posture(const stRobot *robot, const stScene *scene, int primitive, int k,
                     double qhat[ST_NDOF], char *err, size_t errsz);
+
+/* A variation of an open or grasp start (postures.vary_starts): the palm moved by (dx, dy) m
+ * along its own x (towards the fingers) and y axes, its normal tilted by `tilt` rad from
+ * straight down towards the horizontal direction at angle `azimuth` rad from world +x, and the
+ * inverse kinematics started from torso pitch, wrist pronation and wrist pitch ik_deg (deg). */
+typedef struct stPostureVariation {
+  double dx, dy;
+  double tilt, azimuth;
+  double ik_deg[3];
+} stPostureVariation;
+
+/* The variation that changes nothing: st_posture_varied then gives st_posture's result. */
+void st_posture_variation_none(const stScene *scene, stPostureVariation *v);
+
+/* Draws a variation from the scene's postures.vary_* ranges: the offset uniform in a disc of
+ * radius vary_offset, the tilt angle uniform in [0, vary_tilt] and its direction uniform, each
+ * IK start angle uniform between the ik_* key and its vary_* key. */
+void st_posture_variation_draw(const stScene *scene, stRng *rng, stPostureVariation *v);
+
+/* Open or grasp posture k built with variation v, checked as st_posture checks: ST_ERR_RANGE
+ * with the reason in err when the IK misses or the SPEC §8 properties fail; ST_ERR_ARG for
+ * another primitive (reach starts are far from the object and move starts hold it: neither
+ * is varied this way). */
+stStatus st_posture_varied(const stRobot *robot, const stScene *scene, int primitive, int k,
+                           const stPostureVariation *v, double qhat[ST_NDOF], char *err,
+                           size_t errsz);
 
 /* All 16 postures: qhat[primitive][k]. */
 stStatus st_postures_all(const stRobot *robot, const stScene *scene,

@@ -28,6 +28,8 @@ typedef enum stRngStream {
                           individual and condition (selftalk/posteval.h) */
   ST_RNG_POSTEVAL_SOLVER = 8, /* the dynamic solver's generator of a post-evaluation trial:
                                  (test, 0, trial) */
+  ST_RNG_STARTS = 9, /* drawn open and grasp starts (postures.vary_starts): (generation, 0,
+                        trial); common to all individuals */
   ST_RNG_USER = 100  /* first value free for applications */
 } stRngStream;
 

@@ -38,6 +38,8 @@ typedef struct stPostureDef {
   double move_squeeze;
   int move_min_fingers;
   double ik_torso_pitch, ik_wrist_prosup, ik_wrist_pitch; /* IK start of open, grasp, move, deg */
+  double vary_offset, vary_tilt;                          /* postures.vary_*: m, deg */
+  double vary_torso_pitch, vary_wrist_prosup, vary_wrist_pitch; /* the IK start's other end, deg */
   int reach_max_steps;
   double reach_height; /* fitness.reach_height: the reach point above the object centre */
 } stPostureDef;

@@ -30,9 +30,13 @@ typedef struct stTrialSpec {
   double target[3];
   int steps;
   int table_off_step; /* main-prim grasp / move: object-table collision off from this step; -1 */
+  int start_draws;    /* postures.vary_starts: the draw qhat0 is (1..postures.vary_draws); 0:
+                         the fixed posture (not varied, or no draw had the SPEC 8 properties) */
 } stTrialSpec;
 
-/* Trial `index` of a stage in a generation (offsets from the counter-based generator). */
+/* Trial `index` of a stage in a generation (offsets from the counter-based generator; with
+ * postures.vary_starts, open and grasp starts drawn from the stream (seed, ST_RNG_STARTS,
+ * generation, 0, index), the first draw that st_posture_varied accepts). */
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t);
 
 /* The episode of a trial: its spec (kinematic in simple-prim, dynamic in main-prim; seed_key

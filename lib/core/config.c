@@ -155,6 +155,8 @@ static const stageKey g_stage_keys[] = {
      "a post-evaluation starts every trial from the reach postures"},
     {"postures", "ik_*", S_ | M_, "the integrated stage starts every trial from the reach postures",
      "a post-evaluation starts every trial from the reach postures"},
+    {"postures", "vary_*", S_ | M_, "the integrated stage starts every trial from the reach postures",
+     "a post-evaluation starts every trial from the reach postures"},
     {"caretaker", "*", I_ | PI_ | PG_, "the caretaker speaks in the integrated stage only", NO_CARETAKER},
     {"integrated", "steps", I_ | PI_ | PR_, "it defines the integrated stage",
      "the generalisation test's trials last posteval.generalisation_steps"},
@@ -476,10 +478,29 @@ static int check_integrated(const stConfig *c, char *msg, size_t n) {
   return -1;
 }
 
+static int is_default(const stConfig *c, const stConfig *d, const stConfigKey *k);
+
+/* the postures.vary_* keys shape the drawn starts: changed without postures.vary_starts they
+ * would do nothing; returns the key blamed or -1 */
+static int check_vary(const stConfig *c, char *msg, size_t n) {
+  if (c->postures_vary_starts) return -1;
+  stConfig d;
+  st_config_default(&d);
+  for (int i = 0; i < NKEYS; i++) {
+    const stConfigKey *k = &g_keys[i];
+    if (strcmp(k->section, "postures") || strncmp(k->name, "vary_", 5) || is_default(c, &d, k)) continue;
+    snprintf(msg, n, "it shapes the drawn starts, which postures.vary_starts = false turns off "
+             "(expected postures.vary_starts = true, or the key left out)");
+    return i;
+  }
+  return -1;
+}
+
 /* cross-key rules; returns the key index blamed and a message, or -1 */
 static int check_rules(const stConfig *c, char *msg, size_t n) {
-  const int k = check_integrated(c, msg, n);
+  int k = check_integrated(c, msg, n);
   if (k >= 0) return k;
+  if ((k = check_vary(c, msg, n)) >= 0) return k;
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
              "reach,open,grasp,move)", c->stage_primitives);

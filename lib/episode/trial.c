@@ -6,6 +6,26 @@
 #include <string.h>
 
 #include "core/internal.h"
+#include "selftalk/postures.h"
+
+/* postures.vary_starts: an open or grasp trial starts from the first drawn variation of its
+ * posture that has the SPEC 8 properties; the draws are keyed by (generation, trial), common to
+ * every individual, on a stream of their own so the other draws are unchanged */
+static void vary_start(const stProtocol *p, int generation, stTrialSpec *t) {
+  const stConfig *c = &p->cfg;
+  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_STARTS, (uint64_t)generation, 0,
+                           (uint64_t)t->index);
+  for (int i = 1; i <= c->postures_vary_draws; i++) {
+    stPostureVariation v;
+    double q[ST_NDOF];
+    st_posture_variation_draw(&p->scene, &rng, &v);
+    if (st_posture_varied(p->robot, &p->scene, t->primitive, t->k, &v, q, NULL, 0) == ST_OK) {
+      memcpy(t->qhat0, q, sizeof q);
+      t->start_draws = i;
+      return;
+    }
+  }
+}
 
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
   const stConfig *c = &p->cfg;
@@ -20,6 +40,8 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
   stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_TRIAL, (uint64_t)generation, 0, (uint64_t)index);
   st_scene_object(&p->scene, t->k, t->primitive == ST_PRIM_REACH, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
+  if (c->postures_vary_starts && (t->primitive == ST_PRIM_OPEN || t->primitive == ST_PRIM_GRASP))
+    vary_start(p, generation, t);
   if (stage == ST_STAGE_SIMPLE) {
     t->steps = c->stage_simple_steps;
     t->table_off_step = -1;

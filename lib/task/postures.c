@@ -111,23 +111,51 @@ static int ik_run(const stRobot *r, const stIkDef *def, const stIkTarget *t, dou
   return -1;
 }
 
-/* palm down, ball centre at `ball` in the palm frame */
+/* the palm over the ball: ball centre at `ball` in the palm frame, moved by (v->dx, v->dy),
+ * the palm normal down tilted by v->tilt, the IK started from v->ik_deg (torso pitch, wrist
+ * pronation, wrist pitch) */
 static int place_palm_over_ball(const stRobot *r, const stScene *s, int k, const double ball[3],
-                                double q[ST_NDOF], const char *what, char *err, size_t errsz) {
+                                const stPostureVariation *v, double q[ST_NDOF], const char *what,
+                                char *err, size_t errsz) {
   stIkDef def = st_ik_default_def();
   def.dof_weight[ST_DOF_TORSO_YAW] = def.dof_weight[ST_DOF_TORSO_PITCH] = TORSO_WEIGHT;
   stIkTarget t = st_ik_target(r->palm_body, s->obj_pos[k]);
-  memcpy(t.point, ball, sizeof t.point);
-  static const double normal[3] = {0, 0, 1}, down[3] = {0, 0, -1};
+  /* the ball point moves by -d in the palm frame when the palm moves by +d */
+  const double point[3] = {ball[0] - v->dx, ball[1] - v->dy, ball[2]};
+  memcpy(t.point, point, sizeof t.point);
+  static const double normal[3] = {0, 0, 1};
+  const double st = sin(v->tilt);
+  const double down[3] = {st * cos(v->azimuth), st * sin(v->azimuth), -cos(v->tilt)};
   st_ik_target_align(&t, 0, normal, down, NORMAL_WEIGHT);
   /* the palm pose leaves the arm configuration open: the solver ends near where it starts */
   double deg[9];
   memcpy(deg, START_DEG, sizeof deg);
-  deg[ST_DOF_WRIST_PROSUP] = s->posture.ik_wrist_prosup;
-  deg[ST_DOF_WRIST_PITCH] = s->posture.ik_wrist_pitch;
+  deg[ST_DOF_WRIST_PROSUP] = v->ik_deg[1];
+  deg[ST_DOF_WRIST_PITCH] = v->ik_deg[2];
   start_posture(r, deg, q);
-  q[ST_DOF_TORSO_PITCH] = st_robot_dof_qhat(r, ST_DOF_TORSO_PITCH, s->posture.ik_torso_pitch * ST_DEG);
+  q[ST_DOF_TORSO_PITCH] = st_robot_dof_qhat(r, ST_DOF_TORSO_PITCH, v->ik_deg[0] * ST_DEG);
   return ik_run(r, &def, &t, q, what, k, err, errsz);
+}
+
+void st_posture_variation_none(const stScene *s, stPostureVariation *v) {
+  memset(v, 0, sizeof *v);
+  v->ik_deg[0] = s->posture.ik_torso_pitch;
+  v->ik_deg[1] = s->posture.ik_wrist_prosup;
+  v->ik_deg[2] = s->posture.ik_wrist_pitch;
+}
+
+void st_posture_variation_draw(const stScene *s, stRng *rng, stPostureVariation *v) {
+  const stPostureDef *d = &s->posture;
+  /* uniform in the disc: the radius goes as the square root of a uniform draw */
+  const double rad = d->vary_offset * sqrt(st_rng_uniform(rng));
+  const double ang = st_rng_range(rng, 0.0, 2.0 * ST_PI);
+  v->dx = rad * cos(ang);
+  v->dy = rad * sin(ang);
+  v->tilt = st_rng_range(rng, 0.0, d->vary_tilt * ST_DEG);
+  v->azimuth = st_rng_range(rng, 0.0, 2.0 * ST_PI);
+  v->ik_deg[0] = st_rng_range(rng, d->ik_torso_pitch, d->vary_torso_pitch);
+  v->ik_deg[1] = st_rng_range(rng, d->ik_wrist_prosup, d->vary_wrist_prosup);
+  v->ik_deg[2] = st_rng_range(rng, d->ik_wrist_pitch, d->vary_wrist_pitch);
 }
 
 static int count_fingertips(const stWorld *w) {
@@ -171,9 +199,9 @@ static stStatus move_close(const stRobot *r, const stScene *s, int k, double q[S
   return ST_OK;
 }
 
-/* the posture without its final check */
-static stStatus compute(const stRobot *r, const stScene *s, int prim, int k, double q[ST_NDOF],
-                        char *err, size_t errsz) {
+/* the posture without its final check; v varies open, grasp and move */
+static stStatus compute(const stRobot *r, const stScene *s, int prim, int k,
+                        const stPostureVariation *v, double q[ST_NDOF], char *err, size_t errsz) {
   const char *what = st_primitive_name(prim);
   const double rad = s->obj_radius;
   double ball[3] = {0, 0, 0};
@@ -199,7 +227,7 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k, dou
       } else {
         ball[2] = rad + PD.open_high_gap;
       }
-      if (place_palm_over_ball(r, s, k, ball, q, what, err, errsz)) return ST_ERR_RANGE;
+      if (place_palm_over_ball(r, s, k, ball, v, q, what, err, errsz)) return ST_ERR_RANGE;
       q[ST_DOF_THUMB_OPPOSE] = k < 2 ? PD.open_near_oppose : PD.open_high_oppose;
       q[ST_DOF_THUMB_FLEX] = k < 2 ? PD.open_near_thumb : PD.open_high_flex;
       q[ST_DOF_FINGER_FLEX] = k < 2 ? PD.open_near_fingers : PD.open_high_flex;
@@ -207,7 +235,7 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k, dou
     case ST_PRIM_GRASP:
       ball[0] = PD.grasp_ball_x;
       ball[2] = rad + PD.grasp_gap;
-      if (place_palm_over_ball(r, s, k, ball, q, what, err, errsz)) return ST_ERR_RANGE;
+      if (place_palm_over_ball(r, s, k, ball, v, q, what, err, errsz)) return ST_ERR_RANGE;
       q[ST_DOF_THUMB_OPPOSE] = k < 2 ? PD.grasp_oppose : PD.grasp_partial_oppose;
       q[ST_DOF_THUMB_FLEX] = k < 2 ? 0.0 : PD.grasp_partial_thumb_flex;
       q[ST_DOF_FINGER_FLEX] = k < 2 ? 0.0 : PD.grasp_partial_flex;
@@ -215,7 +243,7 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k, dou
     case ST_PRIM_MOVE:
       ball[0] = PD.move_ball_x;
       ball[2] = rad + PD.move_gap;
-      if (place_palm_over_ball(r, s, k, ball, q, what, err, errsz)) return ST_ERR_RANGE;
+      if (place_palm_over_ball(r, s, k, ball, v, q, what, err, errsz)) return ST_ERR_RANGE;
       return move_close(r, s, k, q, err, errsz);
     default: return ST_ERR_ARG;
   }
@@ -262,15 +290,11 @@ static void name_keys(int prim, int k, char *err, size_t errsz) {
                                    "postures.ik_wrist_pitch");
 }
 
-stStatus st_posture(const stRobot *r, const stScene *s, int prim, int k, double qhat[ST_NDOF],
-                    char *err, size_t errsz) {
-  if (prim < 0 || prim >= ST_NPRIM || k < 0 || k >= ST_NPOSTURE) {
-    st__errf(err, errsz, "posture: primitive %d, posture %d (expected 0..%d and 0..%d)", prim, k,
-             ST_NPRIM - 1, ST_NPOSTURE - 1);
-    return ST_ERR_ARG;
-  }
+/* compute, then st_posture_check; qhat is written only on success */
+static stStatus build(const stRobot *r, const stScene *s, int prim, int k,
+                      const stPostureVariation *v, double qhat[ST_NDOF], char *err, size_t errsz) {
   double q[ST_NDOF];
-  stStatus st = compute(r, s, prim, k, q, err, errsz);
+  stStatus st = compute(r, s, prim, k, v, q, err, errsz);
   char why[256];
   if (!st && !st_posture_check(r, s, prim, k, q, why, sizeof why)) {
     st__errf(err, errsz, "posture %s %d: %s", st_primitive_name(prim), k, why);
@@ -282,6 +306,32 @@ stStatus st_posture(const stRobot *r, const stScene *s, int prim, int k, double 
   }
   memcpy(qhat, q, sizeof q);
   return ST_OK;
+}
+
+stStatus st_posture(const stRobot *r, const stScene *s, int prim, int k, double qhat[ST_NDOF],
+                    char *err, size_t errsz) {
+  if (prim < 0 || prim >= ST_NPRIM || k < 0 || k >= ST_NPOSTURE) {
+    st__errf(err, errsz, "posture: primitive %d, posture %d (expected 0..%d and 0..%d)", prim, k,
+             ST_NPRIM - 1, ST_NPOSTURE - 1);
+    return ST_ERR_ARG;
+  }
+  stPostureVariation none;
+  st_posture_variation_none(s, &none);
+  return build(r, s, prim, k, &none, qhat, err, errsz);
+}
+
+stStatus st_posture_varied(const stRobot *r, const stScene *s, int prim, int k,
+                           const stPostureVariation *v, double qhat[ST_NDOF], char *err,
+                           size_t errsz) {
+  if (prim != ST_PRIM_OPEN && prim != ST_PRIM_GRASP) {
+    st__errf(err, errsz, "posture: a varied start of primitive %d (expected open or grasp)", prim);
+    return ST_ERR_ARG;
+  }
+  if (k < 0 || k >= ST_NPOSTURE) {
+    st__errf(err, errsz, "posture: posture %d (expected 0..%d)", k, ST_NPOSTURE - 1);
+    return ST_ERR_ARG;
+  }
+  return build(r, s, prim, k, v, qhat, err, errsz);
 }
 
 stStatus st_postures_all(const stRobot *r, const stScene *s,
@@ -465,7 +515,9 @@ int st_posture_check(const stRobot *r, const stScene *s, int prim, int k,
   for (int j = 0; j < ST_NPOSTURE; j++) {
     if (j == k) continue;
     double other[ST_NDOF];
-    if (compute(r, s, prim, j, other, err, sizeof err)) FAIL("%s", err);
+    stPostureVariation none;
+    st_posture_variation_none(s, &none);
+    if (compute(r, s, prim, j, &none, other, err, sizeof err)) FAIL("%s", err);
     double mx = 0.0;
     for (int d = ST_DOF_SHOULDER_PITCH; d <= ST_DOF_WRIST_YAW; d++)
       mx = fmax(mx, fabs(qhat[d] - other[d]));

@@ -59,6 +59,11 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
   s->posture.ik_torso_pitch = c->postures_ik_torso_pitch;
   s->posture.ik_wrist_prosup = c->postures_ik_wrist_prosup;
   s->posture.ik_wrist_pitch = c->postures_ik_wrist_pitch;
+  s->posture.vary_offset = c->postures_vary_offset;
+  s->posture.vary_tilt = c->postures_vary_tilt;
+  s->posture.vary_torso_pitch = c->postures_vary_torso_pitch;
+  s->posture.vary_wrist_prosup = c->postures_vary_wrist_prosup;
+  s->posture.vary_wrist_pitch = c->postures_vary_wrist_pitch;
   s->posture.reach_max_steps = c->postures_reach_max_steps;
   s->posture.reach_height = c->fitness_reach_height;
 }
