@@ -124,8 +124,8 @@ static int place_palm_over_ball(const stRobot *r, const stScene *s, int k, const
   const double point[3] = {ball[0] - v->dx, ball[1] - v->dy, ball[2]};
   memcpy(t.point, point, sizeof t.point);
   static const double normal[3] = {0, 0, 1};
-  const double st = sin(v->tilt);
-  const double down[3] = {st * cos(v->azimuth), st * sin(v->azimuth), -cos(v->tilt)};
+  const double sin_t = sin(v->tilt);
+  const double down[3] = {sin_t * cos(v->azimuth), sin_t * sin(v->azimuth), -cos(v->tilt)};
   st_ik_target_align(&t, 0, normal, down, NORMAL_WEIGHT);
   /* the palm pose leaves the arm configuration open: the solver ends near where it starts */
   double deg[9];
