@@ -61,7 +61,7 @@ def main():
     for i, (path, rows) in enumerate(runs):
         pi = panels.index(a.panel[i]) if a.panel else 0
         ax = flat[pi]
-        ci = (a.panel[:i].count(a.panel[i]) if a.panel else i)
+        ci = a.panel[:i].count(a.panel[i]) if a.panel else i
         c, name = COLOURS[ci % len(COLOURS)], a.label[i] if a.label else path
         gs = [r["generation"] for r in rows]
         ax.plot(gs, [r["best"] for r in rows], color=c, lw=1.3, label=f"{name}: fitness")

@@ -512,11 +512,11 @@ int st_posture_check(const stRobot *r, const stScene *s, int prim, int k,
   st_world_destroy(w);
   if (!ok || prim != ST_PRIM_REACH) return ok;
   /* reach: four distinct arm postures */
+  stPostureVariation none;
+  st_posture_variation_none(s, &none);
   for (int j = 0; j < ST_NPOSTURE; j++) {
     if (j == k) continue;
     double other[ST_NDOF];
-    stPostureVariation none;
-    st_posture_variation_none(s, &none);
     if (compute(r, s, prim, j, &none, other, err, sizeof err)) FAIL("%s", err);
     double mx = 0.0;
     for (int d = ST_DOF_SHOULDER_PITCH; d <= ST_DOF_WRIST_YAW; d++)
