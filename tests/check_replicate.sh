@@ -57,6 +57,22 @@ diffs=$(cd "$tmp/a" && find . -type f ! -name '*.log' ! -name '*.png' ! -name '*
 if [ -z "$diffs" ]; then ok "the resumed replication's files equal the uninterrupted one's"; else
   ko "resumed replication" "differ: $(echo $diffs)"; fi
 
+# stopped after a run finished but before make saw it end (a wrapper that pauses after evolve):
+# make must not delete the run's population.genome, which a resume of the finished run does
+# not write again
+printf '#!/bin/sh\n"%s/apps/evolve" "$@" || exit $?\ntouch "%s/finished"\nsleep 30\n' "$PWD" "$tmp" > "$tmp/slow"
+chmod +x "$tmp/slow"
+setsid $REP OUT="$tmp/d" EVOLVE="$tmp/slow" "$tmp/d/prims-s1/population.genome" > "$tmp/d.out" 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do [ -e "$tmp/finished" ] && break; sleep 0.1; done
+kill -TERM -- -$pid 2> /dev/null
+wait $pid 2> /dev/null
+if [ -e "$tmp/finished" ] && [ -s "$tmp/d/prims-s1/population.genome" ] &&
+   $REP OUT="$tmp/d" "$tmp/d/prims-s1/population.genome" > /dev/null 2>&1 &&
+   cmp -s "$tmp/d/prims-s1/population.genome" "$tmp/a/prims-s1/population.genome"; then
+  ok "stopped after a run's last checkpoint: its population.genome kept"
+else ko "stopped after a run's last checkpoint" "$(cat "$tmp/d.out")"; fi
+
 # refusals
 $REP OUT="$tmp/c" PRESET=huge > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "PRESET=huge: expected full, small or tiny" "$tmp/e"; then

@@ -80,6 +80,10 @@ REPORT := $(OUT)/report.md
 .DELETE_ON_ERROR:
 # a step's files stay when a later step fails: they are results
 .SECONDARY:
+# and when make is stopped: evolve and posteval write them atomically, so they are never
+# partial, and a finished run resumed says "complete" without writing its population again
+# (make's "Deleting file" after a run's last checkpoint lost its population.genome for good)
+.PRECIOUS: $(PRIM_POPS) $(INT_POPS) $(POST_INTEG) $(POST_ROB) $(POST_GEN)
 
 all: report
 prims: $(PRIM_POPS)
