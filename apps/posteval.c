@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT
  * posteval: the post-evaluations of thesis §2.10 (SPEC §11, selftalk/posteval.h).
  *
- *   posteval integration    CONFIG POPULATION... [options]   (configs/prims.cfg, main_prim.cfg)
+ *   posteval integration    CONFIG POPULATION... [--no-words] [options]   (configs/prims.cfg)
  *   posteval robustness     CONFIG RUNDIR...     [options]   (configs/integrated_<cond>.cfg)
  *   posteval generalisation CONFIG RUNDIR...     [--caretaker] [options]
  *   options: [--out DIR] [--threads N] [--condition NAME] [--resume] [--journal-every S]
@@ -14,7 +14,9 @@
  * integrated run directory, posteval.robustness_trials (40) autonomous trials. generalisation:
  * the same individuals on the 7 x 7 grid x 4 postures x 10 repetitions, 300 steps; an individual
  * with no autonomous success in its last training generation scores 0 without being run;
- * --caretaker runs every individual with the caretaker's words (ST-CT0, ST0).
+ * --caretaker runs every individual with the caretaker's words (ST-CT0, ST0); --no-words runs
+ * the integration test's trials with no words (SPEC 12: primitives that stay word-driven should
+ * rarely chain without them).
  * Writes DIR/trials.csv, DIR/summary.csv and DIR/config.ini atomically (default DIR
  * runs/posteval/TEST-CONDITION); progress on stderr. The files are the same for any --threads.
  * The trials done are journalled in DIR/posteval.journal every --journal-every S seconds (30;
@@ -30,7 +32,7 @@
 static const char *prog = "posteval";
 
 static void usage(FILE *f) {
-  fprintf(f, "usage: posteval integration CONFIG POPULATION... [options]\n"
+  fprintf(f, "usage: posteval integration CONFIG POPULATION... [--no-words] [options]\n"
              "       posteval robustness CONFIG RUNDIR... [options]\n"
              "       posteval generalisation CONFIG RUNDIR... [--caretaker] [options]\n"
              "options: [--out DIR] [--threads N] [--condition NAME] [--resume] [--journal-every S]\n"
@@ -44,7 +46,8 @@ typedef struct cli {
   appConfigArgs ca;
   const char *test, *out, *condition;
   const char *inputs[MAX_INPUTS];
-  int ninputs, threads, caretaker, resume;
+  int ninputs, threads, resume;
+  stPostVariant variant;
   double journal_seconds;
 } cli;
 
@@ -63,7 +66,8 @@ static void parse(cli *c, int argc, char **argv) {
     if (!strcmp(a, "--out") && i + 1 < argc) c->out = argv[++i];
     else if (!strcmp(a, "--threads") && i + 1 < argc) c->threads = app_int_arg(prog, a, argv[++i], 1);
     else if (!strcmp(a, "--condition") && i + 1 < argc) c->condition = argv[++i];
-    else if (!strcmp(a, "--caretaker")) c->caretaker = 1;
+    else if (!strcmp(a, "--caretaker")) c->variant = ST_POST_CARETAKER;
+    else if (!strcmp(a, "--no-words")) c->variant = ST_POST_NO_WORDS;
     else if (!strcmp(a, "--resume")) c->resume = 1;
     else if (!strcmp(a, "--journal-every") && i + 1 < argc) {
       char *end;
@@ -100,11 +104,11 @@ int main(int argc, char **argv) {
   char cond[64], dir[1024];
   if (!c.out) {
     if (c.condition) snprintf(cond, sizeof cond, "%s", c.condition);
-    else st_post_condition(&cfg, (stPostTest)test, c.caretaker, cond, sizeof cond);
+    else st_post_condition(&cfg, (stPostTest)test, c.variant, cond, sizeof cond);
     snprintf(dir, sizeof dir, "runs/posteval/%s-%s", c.test, cond);
     c.out = dir;
   }
-  const stPostRunDef def = {&cfg, &file_cfg, (stPostTest)test, c.inputs, c.ninputs, c.caretaker,
+  const stPostRunDef def = {&cfg, &file_cfg, (stPostTest)test, c.inputs, c.ninputs, c.variant,
                             c.condition, c.out, c.threads, stderr, c.resume, c.journal_seconds};
   char err[2048];
   if (st_post_run(&def, err, sizeof err)) app_die(prog, "%s", err);

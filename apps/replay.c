@@ -259,23 +259,27 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
   stWorkspace ws = {NULL, NULL};
   stTrialResult r;
   char err[1024];
-  uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
-                              (uint64_t)index, (uint64_t)trial).key;
+  const uint64_t key = st_trial_seed_key(p, generation, index, trial);
   const stTraceFn fn = trace->f || trace->shapes ? on_step : NULL;
   if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, fn, trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
-  long n_p = 0;
-  for (int k = 0; k < ST_NPOSTURE; k++) {
+  long n_p = 0; /* the primitive's trials, hand-over trials included */
+  for (int i = 0; i < st_stage_trials(p, stage); i++) {
     stTrialSpec o;
-    st_trial_spec(p, stage, generation, t.primitive * ST_NPOSTURE + k, &o);
-    n_p += o.steps;
+    st_trial_spec(p, stage, generation, i, &o);
+    if (o.primitive == t.primitive) n_p += o.steps;
   }
+  if (t.handover)
+    fprintf(stderr, "replay: hand-over trial: %s\n", r.handover_step >= 0 ? "handed over (below)"
+            : "the roll-in did not hand over: the fixed-posture fallback ran (the trace holds both)");
   double share = (r.success ? p->fitness.bonus : 0.0) + p->fitness.scale / (double)n_p * (r.sum_s - r.sum_p);
+  char ho[48] = "";
+  if (t.handover) snprintf(ho, sizeof ho, " handover_step=%d", r.handover_step);
   printf("trial %d %s %s k=%d success=%d steps=%ld/%d end=%s first_success_step=%d sum_S=%.6f "
-         "sum_P=%.6f F_contribution=%.6f\n",
+         "sum_P=%.6f F_contribution=%.6f%s\n",
          trial, st_stage_name(stage), st_primitive_name(t.primitive), t.k, r.success, r.steps_run,
-         t.steps, ENDS[r.end], r.success_step, r.sum_s, r.sum_p, share);
+         t.steps, ENDS[r.end], r.success_step, r.sum_s, r.sum_p, share, ho);
 }
 
 /* an integrated trial: what it heard, how it ended, its bonus and points (eq. 2.14) and, for a
@@ -403,7 +407,6 @@ int main(int argc, char **argv) {
     app_die(prog, "--caretaker is the generalisation test's variant: give --posteval generalisation");
   if (post >= 0 && (stage_name || nforce))
     app_die(prog, "--posteval replays a post-evaluation trial: --stage and --force apply to primitive trials");
-  if (post < 0 && !integrated && trial >= ST_PRIM_TRIALS) app_die(prog, "--trial: expected 0..%d", ST_PRIM_TRIALS - 1);
   if (integrated && (stage_name || nforce))
     app_die(prog, "%s is an integrated-stage config: --stage and --force apply to primitive trials",
             ca.config_path);
@@ -416,6 +419,9 @@ int main(int argc, char **argv) {
     else if (!strcmp(stage_name, "main")) stage = ST_STAGE_MAIN;
     else app_die(prog, "--stage '%s': expected simple or main", stage_name);
   }
+  /* main-prim with stage.handover: trials 16..27 are its hand-over trials */
+  const int ntrials = stage == ST_STAGE_MAIN && cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
+  if (post < 0 && !integrated && trial >= ntrials) app_die(prog, "--trial: expected 0..%d", ntrials - 1);
   /* network.arch: an integrated-stage genotype (type A or B) replays primitive trials too */
   const stNetArch arch = (stNetArch)cfg.network_arch;
   char err[1024];

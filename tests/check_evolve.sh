@@ -145,6 +145,46 @@ else
   ko "postures.vary_starts" "$(tail -2 "$tmp/v1.log") $(cat "$tmp/vreplay.txt" "$tmp/vreplay.err" | tail -3)"
 fi
 
+# stage.handover and stage.chain_trials (SPEC 12): main-prim's hand-over trials (open's, here)
+# and chained trials; thread-independent; the hand-over trials replayed one by one (the fixed
+# and hand-over trials' shares of F_open, summed, are the best's fitness, the successes those of
+# the csv's last row); with chained trials F is the harmonic mean of F_open and F_chain
+ho=(--generations 2 --seed 12 --set ga.population=4 --set ga.elites=1 --set ga.parents=2
+    --set ga.success_genotypes=4 --set stage.primitives=open
+    --set stage.init_population=data/evolved/prims_s2/population.genome)
+"$EV" configs/main_prim.cfg "${ho[@]}" --set stage.handover=true --threads 1 --out "$tmp/h1" > "$tmp/h1.log" 2>&1
+"$EV" configs/main_prim.cfg "${ho[@]}" --set stage.handover=true --threads 2 --out "$tmp/h2" > "$tmp/h2.log" 2>&1
+chain=(--set stage.chain_trials=2 --set integrated.steps=60)
+"$EV" configs/main_prim.cfg "${ho[@]}" "${chain[@]}" --threads 1 --out "$tmp/c1" > "$tmp/c1.log" 2>&1
+"$EV" configs/main_prim.cfg "${ho[@]}" "${chain[@]}" --threads 2 --out "$tmp/c2" > "$tmp/c2.log" 2>&1
+for k in 4 5 6 7 16 17 18 19; do
+  "$APPDIR/replay" "$tmp/h1/population.genome" "$tmp/h1/config.ini" --trial $k --generation 1 --index 0
+done > "$tmp/hreplay.txt" 2> "$tmp/hreplay.err"
+if same_files "$tmp/h1" "$tmp/h2" && same_files "$tmp/c1" "$tmp/c2" &&
+   grep -q '(hand-over [ 0-9]*/4, [ 0-9]* handed over)' "$tmp/h1.log" &&
+   grep -q '(chained [0-2]/2, F_chain' "$tmp/c1.log" &&
+   [ "$(grep -c 'handover_step=' "$tmp/hreplay.txt")" = 4 ] &&
+   python3 - "$tmp/hreplay.txt" "$tmp/h1/fitness.csv" "$tmp/c1/fitness.csv" <<'PY'
+import csv, re, sys
+F, succ = 0.0, []
+for line in open(sys.argv[1]):
+    F += float(re.search(r"F_contribution=(\S+)", line).group(1))
+    succ.append(int(re.search(r"success=(\d)", line).group(1)))
+row = list(csv.DictReader(open(sys.argv[2])))[-1]
+want = [int(row["best_t%d" % t]) for t in range(4, 8)] + [int(row["best_h%d" % t]) for t in range(4)]
+c = list(csv.DictReader(open(sys.argv[3])))[-1]
+Fc = 2 / (1 / max(float(c["best_F_open"]), 0.001) + 1 / max(float(c["best_F_chain"]), 0.001))
+print("replay F_open %.6f vs csv %s, successes %s vs %s; chained F %.6f vs %s" %
+      (F, row["best"], succ, want, Fc, c["best"]))
+sys.exit(0 if succ == want and abs(F - float(row["best"])) < 1e-4 and
+         abs(Fc - float(c["best"])) < 1e-9 * Fc and "best_c1" in c else 1)
+PY
+then
+  ok "stage.handover and stage.chain_trials: threads 1 = 2, hand-over trials replayed to the csv's F and successes"
+else
+  ko "stage.handover, stage.chain_trials" "$(tail -2 "$tmp/h1.log" "$tmp/c1.log") $(cat "$tmp/hreplay.txt" "$tmp/hreplay.err" | tail -3)"
+fi
+
 # trials the simulation gives up on are reported: with a speed limit of 1 mm/s every one of the
 # 4 genotypes x 4 grasp trials diverges (the --set options also check population-dependent
 # rules only once all are in: population=4 comes before elites=1)

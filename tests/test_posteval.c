@@ -181,6 +181,13 @@ static void test_post_words_and_conditions(void) {
     CU_ASSERT_EQUAL(w, ST_WORDS_CARETAKER);
     CU_ASSERT_EQUAL(st_post_words(&idef, ST_POST_ROBUSTNESS, 1, &w, err, sizeof err), ST_ERR_ARG);
     ST_ASSERT_CONTAINS(err, "the caretaker variant belongs to the generalisation test");
+    /* the no-words variant: the integration test's trials with nothing heard, that test only */
+    CU_ASSERT_EQUAL(st_post_words(&idef, ST_POST_INTEGRATION, ST_POST_NO_WORDS, &w, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(w, ST_WORDS_NONE);
+    CU_ASSERT_EQUAL(st_post_words(&idef, ST_POST_ROBUSTNESS, ST_POST_NO_WORDS, &w, err, sizeof err), ST_ERR_ARG);
+    ST_ASSERT_CONTAINS(err, "the no-words variant belongs to the integration test");
+    CU_ASSERT_EQUAL(st_post_words(&idef, ST_POST_GENERALISATION, ST_POST_NO_WORDS, &w, err, sizeof err), ST_ERR_ARG);
+    CU_ASSERT_EQUAL(st_post_words(&idef, ST_POST_INTEGRATION, (stPostVariant)3, &w, err, sizeof err), ST_ERR_ARG);
     st_post_condition(&c, ST_POST_ROBUSTNESS, 0, name, sizeof name);
     CU_ASSERT_STRING_EQUAL(name, rows[i].name);
     st_post_condition(&c, ST_POST_GENERALISATION, 1, name, sizeof name);
@@ -199,6 +206,8 @@ static void test_post_words_and_conditions(void) {
   c = config_of("configs/prims.cfg");
   st_post_condition(&c, ST_POST_INTEGRATION, 0, name, sizeof name);
   CU_ASSERT_STRING_EQUAL(name, "incremental");
+  st_post_condition(&c, ST_POST_INTEGRATION, ST_POST_NO_WORDS, name, sizeof name);
+  CU_ASSERT_STRING_EQUAL(name, "incremental-nowords");
   c = config_of("configs/main_prim.cfg"); /* from the simple-prim population */
   st_post_condition(&c, ST_POST_INTEGRATION, 0, name, sizeof name);
   CU_ASSERT_STRING_EQUAL(name, "incremental");

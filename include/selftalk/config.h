@@ -105,6 +105,10 @@ extern "C" {
   INT(stage, main_move_steps, 70, 1, 100000, "main-prim move trial length (3.5 s)") \
   INT(stage, grasp_table_off_step, 40, 0, 100000, "main-prim grasp: object-table collision off after this many steps") \
   INT(stage, move_table_off_step, 10, 0, 100000, "main-prim move: object-table collision off after this many steps") \
+  BOOL(stage, handover, 0, "main-prim adds 12 hand-over trials: open, grasp, move from where the caretaker hands over to each in the individual's own chain (SPEC 12, docs/PROTOCOL.md; not the thesis's); false: its 16") \
+  INT(stage, chain_trials, 0, 0, 32, "main-prim adds this many chained trials (the integrated stage's table, the caretaker's words) scored by eq. 2.14 as a 5th term of the harmonic mean (SPEC 12; 0: the thesis)") \
+  BOOL(stage, handover_fallback, 0, "a hand-over trial whose chain never hands over: true, runs from the fixed posture; false, scores 0 over its length (a fallback it solves would reward a chain that breaks)") \
+  INT(stage, handover_rollin_steps, 170, 1, 100000, "hand-over trials: the caretaker must hand over within this many steps of the chain (integrated.steps 240 less main-prim move's 70); else see handover_fallback") \
   INT(caretaker, grasp_touches, 3, 1, 6, "the caretaker considers a grasp done when this many touch sensors touch the object (thesis 2.9.3)") \
   INT(caretaker, first_step, 1, 0, 100000, "first step at which the caretaker speaks (never at step 0, thesis 2.9.3)") \
   STR(integrated, populations, "", "integrated stage: primitive-stage population files (612 genes, best first), comma-separated; each item may be a glob pattern (expanded in sorted order)") \

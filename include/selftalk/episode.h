@@ -59,7 +59,8 @@ typedef struct stEpisodeSpec {
   double obj[3];            /* object centre */
   double target[3];
   int steps;                /* length (control steps); a scorer may end the episode earlier */
-  int table_off_step;       /* object-table collision off from this step on; -1: never */
+  int table_off_step;       /* object-table collision off from this step on; -1: never.
+                               With ST_WORDS_HANDOVER: counted from the hand-over step */
   uint64_t seed_key;        /* the dynamic solver's generator (st_world_set_seed) */
 } stEpisodeSpec;
 
@@ -71,15 +72,18 @@ typedef enum stWordSource {
   ST_WORDS_FIXED,     /* one word every step (primitive trials) */
   ST_WORDS_CARETAKER, /* the caretaker of thesis §2.9.3, sensing the state before each action */
   ST_WORDS_SELFTALK,  /* the label the controller produced at the previous step; none at step 0 */
+  ST_WORDS_HANDOVER,  /* the caretaker until its word reaches `word` (said, or jumped past), then
+                         `word` every step: a primitive's trial from the state the chain hands
+                         over in (main-prim's hand-over trials, stage.handover) */
   ST_WORDS_COUNT
 } stWordSource;
 
-/* "none", "fixed", "caretaker", "selftalk". */
+/* "none", "fixed", "caretaker", "selftalk", "handover". */
 const char *st_word_source_name(stWordSource source);
 
 typedef struct stWords {
   stWordSource source;
-  int word;         /* ST_WORDS_FIXED: the primitive named (ST_PRIM_*) */
+  int word;         /* ST_WORDS_FIXED, ST_WORDS_HANDOVER: the primitive named (ST_PRIM_*) */
   double scale;     /* input value of the word heard (network.linguistic_input, 10) */
   double secondary; /* secondary input "move-object-to-target" every step (0 in primitive
                        trials, network.secondary_input in integrated ones) */
@@ -138,6 +142,8 @@ typedef struct stTraceStep {
   int focus_target;         /* focus chosen by this step's output */
   stWordSource source;      /* where the word heard came from */
   int word;                 /* word heard this step (ST_PRIM_*), -1 none */
+  int handover;             /* ST_WORDS_HANDOVER: the step the word was handed over at, -1
+                               before (and for other sources) */
   int label;                /* label produced this step (talking controllers), -1 */
   double pen_table;         /* penalties of the state: table touching, */
   double pen_object;        /* object touching, */

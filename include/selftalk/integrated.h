@@ -45,6 +45,11 @@ typedef struct stIntegratedDef {
 
 void st_integrated_def_from_config(const stConfig *cfg, stIntegratedDef *def);
 
+/* Main-prim's chained trials (stage.chain_trials, SPEC 12): the integrated stage's trials
+ * (integrated.steps, hold_steps, focus_bonus_steps) for the base network, every trial hearing
+ * the caretaker and scored by eq. 2.14, no first-generation variant. */
+void st_chain_def_from_config(const stConfig *cfg, stIntegratedDef *def);
+
 /* What trial i of a generation is: the words it hears, the fitness it gets, its bonus factor.
  * autonomous: it hears no caretaker (self talk or nothing). */
 typedef struct stIntPlan {

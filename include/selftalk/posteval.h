@@ -93,20 +93,30 @@ void st_post_cell_center(const stPostDef *def, int cell, double xy[2]);
  * collision on throughout. */
 void st_post_episode(const stProtocol *p, const stPostTrial *trial, stEpisodeSpec *e);
 
-/* What the trials of a test hear: integration, and the generalisation test's caretaker variant
- * (caretaker = 1), the caretaker; robustness and generalisation the condition's autonomous
- * words (integrated.words_odd, else words_even, whichever is not the caretaker: self talk for
- * ST-CT and ST, none for CT and NI). ST_ERR_ARG when the condition has no autonomous trials
- * or the caretaker variant is asked of another test. */
-stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, int caretaker,
+/* A test's variant: its own words, or other words in the same trials. */
+typedef enum stPostVariant {
+  ST_POST_OWN_WORDS = 0, /* the test's words */
+  ST_POST_CARETAKER = 1, /* generalisation: the caretaker's words (ST-CT0, ST0) */
+  ST_POST_NO_WORDS = 2   /* integration: no words (SPEC 12: chains of primitives that stay
+                            word-driven should rarely succeed without them) */
+} stPostVariant;
+
+/* What the trials of a test hear: integration, and the generalisation test's caretaker variant,
+ * the caretaker; robustness and generalisation the condition's autonomous words
+ * (integrated.words_odd, else words_even, whichever is not the caretaker: self talk for ST-CT
+ * and ST, none for CT and NI); the integration test's no-words variant, none. ST_ERR_ARG when
+ * the condition has no autonomous trials or a variant is asked of another test. */
+stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, stPostVariant variant,
                        stWordSource *words, char *err, size_t errsz);
 
 /* The condition's label: robustness and generalisation, the row of Table 2.1 the config's
  * network.arch and integrated.words_* / fitness_* / first_generation match ("ST-CT", "ST",
  * "CT", "NI"; "custom" for none), with "0" appended for the caretaker variant ("ST-CT0");
  * integration, the primitive runs' kind (thesis 3.1): "incremental" (stage.stages prims, or
- * main_prim from stage.init_population) or "nonincremental" (main_prim from random genotypes). */
-void st_post_condition(const stConfig *cfg, stPostTest test, int caretaker, char *buf, size_t n);
+ * main_prim from stage.init_population) or "nonincremental" (main_prim from random genotypes),
+ * with "-nowords" appended for the no-words variant. */
+void st_post_condition(const stConfig *cfg, stPostTest test, stPostVariant variant, char *buf,
+                       size_t n);
 
 /* The exclusion rule of the generalisation test (thesis 2.10.3, SPEC §11): 1 when none of the
  * trials that were autonomous (st_integrated_plan: no caretaker) in the training generation
@@ -205,7 +215,8 @@ typedef struct stPostRunDef {
   const char *const *inputs; /* integration: population files or primitive run directories;
                                 else integrated run directories */
   int ninputs;
-  int caretaker;             /* generalisation: the caretaker variant (ST-CT0, ST0) */
+  stPostVariant variant;     /* the test's words, or its caretaker (generalisation) or no-words
+                                (integration) variant */
   const char *condition;     /* nullable: st_post_condition */
   const char *out_dir;
   int threads;               /* 0: run.threads, else one per core */

@@ -30,6 +30,10 @@ typedef enum stRngStream {
                                  (test, 0, trial) */
   ST_RNG_STARTS = 9, /* drawn open and grasp starts (postures.vary_starts): (generation, 0,
                         trial); common to all individuals */
+  ST_RNG_HANDOVER = 10, /* hand-over trials' offsets (stage.handover): (generation, 0, trial);
+                           common to all individuals */
+  ST_RNG_HANDOVER_SOLVER = 11, /* the dynamic solver's generator of a hand-over trial:
+                                  (generation, individual, trial) */
   ST_RNG_USER = 100  /* first value free for applications */
 } stRngStream;
 

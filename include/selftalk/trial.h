@@ -17,11 +17,17 @@ extern "C" {
 #endif
 
 #define ST_PRIM_TRIALS 16 /* trials of a primitive stage: 4 per primitive */
+/* main-prim's hand-over trials (stage.handover, not the thesis's protocol): open, grasp and
+ * move from each reach posture k, indices ST_PRIM_TRIALS + 4 (primitive - 1) + k */
+#define ST_HANDOVER_TRIALS 12
+#define ST_MAIN_TRIALS_MAX (ST_PRIM_TRIALS + ST_HANDOVER_TRIALS)
 
 /* One trial, fully specified. */
 typedef struct stTrialSpec {
   stStage stage;
-  int index;          /* 0..15: primitive index / 4, posture and object position index % 4 */
+  int index;          /* 0..15: primitive index / 4, posture and object position index % 4;
+                         16..27: hand-over trials (primitive 1 + (index - 16) / 4) */
+  int generation;
   int primitive;
   int k;              /* posture and object position */
   int target_index;   /* k mod 2 */
@@ -32,12 +38,30 @@ typedef struct stTrialSpec {
   int table_off_step; /* main-prim grasp / move: object-table collision off from this step; -1 */
   int start_draws;    /* postures.vary_starts: the draw qhat0 is (1..postures.vary_draws); 0:
                          the fixed posture (not varied, or no draw had the SPEC 8 properties) */
+  int handover;       /* a hand-over trial: qhat0 is reach posture k, the object has the reach
+                         trials' offset; the caretaker's chain runs (unscored) until it hands
+                         over to `primitive`, which is then scored for `steps` steps as its own
+                         trial (table_off_step counted from the hand-over) */
+  int rollin_steps;   /* hand-over trials: the chain must hand over before this step */
 } stTrialSpec;
 
 /* Trial `index` of a stage in a generation (offsets from the counter-based generator; with
  * postures.vary_starts, open and grasp starts drawn from the stream (seed, ST_RNG_STARTS,
- * generation, 0, index), the first draw that st_posture_varied accepts). */
+ * generation, 0, index), the first draw that st_posture_varied accepts). Main-prim indices
+ * 16..27 are the hand-over trials (offsets from (seed, ST_RNG_HANDOVER, generation, 0,
+ * index - 16): object, then target), built whatever stage.handover says. */
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t);
+
+/* The trial a hand-over trial falls back to when its roll-in did not hand over: the fixed
+ * main-prim trial of its primitive and posture, with the hand-over trial's target and index. */
+void st_handover_fallback(const stProtocol *p, const stTrialSpec *handover, stTrialSpec *t);
+
+/* The key of the dynamic solver's generator for trial `index` of a generation run by
+ * `individual` (stream ST_RNG_TRIAL, hand-over trials ST_RNG_HANDOVER_SOLVER). */
+uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index);
+
+/* Trials of a stage: 16, or 28 in main-prim with stage.handover. */
+int st_stage_trials(const stProtocol *p, stStage stage);
 
 /* The episode of a trial: its spec (kinematic in simple-prim, dynamic in main-prim; seed_key
  * keys the dynamic solver's generator) and its words (the primitive's word every step, no
@@ -53,6 +77,11 @@ typedef struct stTrialResult {
   int success_step;    /* first step the success condition held, -1 */
   stTrialEnd end;
   int unstable;        /* the simulation diverged */
+  int handover_step;   /* hand-over trials: the step of the chain the primitive took over at;
+                          -1: the roll-in did not hand over, and the trial either ran from the
+                          fixed posture (stage.handover_fallback, st_handover_fallback) or
+                          scored nothing (S = P = 0 over its length, end ST_END_QUIET, no step
+                          run). -1 for other trials */
 } stTrialResult;
 
 /* The scoring of one trial, step by step, separate from the simulation so that it can be fed
@@ -97,7 +126,9 @@ stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec 
                         stTrialResult *r);
 
 /* A primitive trial driven by any controller (e.g. the scripted one): st_trial_episode, the
- * primitive scorer, st_episode_run. Nullable: trace. */
+ * primitive scorer, st_episode_run. A hand-over trial whose roll-in did not hand over scores
+ * nothing, or with stage.handover_fallback runs its fallback next (the trace sees the
+ * roll-in's steps, then the fallback's from step 0). Nullable: trace. */
 stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                            const stController *ctl, uint64_t seed_key, stTrialResult *r,
                            stTraceFn trace, void *ctx, char *err, size_t errsz);
@@ -116,19 +147,35 @@ stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrial
                              uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
                              char *err, size_t errsz);
 
+#define ST_CHAIN_TRIALS_MAX 32 /* stage.chain_trials at most */
+
 /* An individual's score over all trials of a stage. */
 typedef struct stEvaluation {
-  double fitness;              /* harmonic mean of fp over the evaluated primitives */
+  double fitness;              /* harmonic mean of fp over the evaluated primitives (and
+                                  f_chain with stage.chain_trials) */
   double fp[ST_NPRIM];         /* F_p (0 for a primitive not evaluated) */
-  int ntrials;                 /* trials evaluated: 16 unless stage.primitives names fewer */
-  int successes;               /* trials succeeded */
-  uint8_t success[ST_PRIM_TRIALS];
+  int ntrials;                 /* trials evaluated: 16 unless stage.primitives names fewer;
+                                  with stage.handover main-prim's hand-over trials too */
+  int successes;               /* trials succeeded (hand-over trials included) */
+  uint8_t success[ST_PRIM_TRIALS]; /* the fixed trials */
   int unstable;                /* trials that diverged */
+  int handover_trials;         /* hand-over trials evaluated (0: stage.handover off) */
+  int handover_successes;      /* ... succeeded */
+  int handovers;               /* ... whose roll-in handed over (the rest ran the fallback) */
+  uint8_t handover_success[ST_HANDOVER_TRIALS];
+  int chain_trials;            /* chained trials evaluated (stage.chain_trials in main-prim) */
+  int chain_successes;         /* ... whose object reached the target and stayed lifted */
+  double f_chain;              /* their eq. 2.14 fitness: B + scale / N sum max(0, S - P) */
+  uint8_t chain_success[ST_CHAIN_TRIALS_MAX];
 } stEvaluation;
 
 /* Evaluates a network on the 16 trials of a stage in a generation (only those of the
  * primitives in p->primitives; a trial keeps its index, offsets and generator key, so a subset
- * scores each trial exactly as the full set does). individual keys the dynamic solver's
+ * scores each trial exactly as the full set does), then, in main-prim with stage.handover, its
+ * 12 hand-over trials: each counts in its primitive's F_p as one more trial (eq. 2.3: its
+ * bonus, its S - P over its length); and, with stage.chain_trials, that many chained trials
+ * (st_chain_def: the integrated stage's trials with the caretaker's words), whose eq. 2.14
+ * fitness is one more term of the harmonic mean. individual keys the dynamic solver's
  * generator. */
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, stEvaluation *e, char *err,

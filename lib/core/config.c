@@ -126,6 +126,8 @@ static const stageKey g_stage_keys[] = {
     {"stage", "main_move_steps", M_, "it is the length of main-prim move trials", "a post-evaluation runs integrated trials"},
     {"stage", "grasp_table_off_step", M_, "only main-prim grasp trials remove the table", "a post-evaluation runs integrated trials"},
     {"stage", "move_table_off_step", M_, "only main-prim move trials remove the table", "a post-evaluation runs integrated trials"},
+    {"stage", "handover*", M_, "only main-prim has hand-over trials", "a post-evaluation runs integrated trials"},
+    {"stage", "chain_trials", M_, "only main-prim has chained trials", "a post-evaluation runs integrated trials"},
     {"fitness", "penalty_object", S_ | M_, "the integrated stage's penalty is the table's and the "
                                            "object-moving one (eq. 2.14)", NO_FITNESS},
     {"fitness", "fp_min", S_ | M_, "only the primitive stages take the harmonic mean of F_p", NO_FITNESS},
@@ -496,11 +498,28 @@ static int check_vary(const stConfig *c, char *msg, size_t n) {
   return -1;
 }
 
+/* the stage.handover_* keys shape the hand-over trials: changed without stage.handover they
+ * would do nothing; returns the key blamed or -1 */
+static int check_handover(const stConfig *c, char *msg, size_t n) {
+  if (c->stage_handover) return -1;
+  stConfig d;
+  st_config_default(&d);
+  for (int i = 0; i < NKEYS; i++) {
+    const stConfigKey *k = &g_keys[i];
+    if (strcmp(k->section, "stage") || strncmp(k->name, "handover_", 9) || is_default(c, &d, k)) continue;
+    snprintf(msg, n, "it shapes the hand-over trials, which stage.handover = false turns off "
+             "(expected stage.handover = true, or the key left out)");
+    return i;
+  }
+  return -1;
+}
+
 /* cross-key rules; returns the key index blamed and a message, or -1 */
 static int check_rules(const stConfig *c, char *msg, size_t n) {
   int k = check_integrated(c, msg, n);
   if (k >= 0) return k;
   if ((k = check_vary(c, msg, n)) >= 0) return k;
+  if ((k = check_handover(c, msg, n)) >= 0) return k;
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
              "reach,open,grasp,move)", c->stage_primitives);
@@ -613,12 +632,25 @@ static void short_real(double v, char *buf, size_t n) {
   }
 }
 
+/* readers that depend on another key's value: main-prim's hand-over trials (stage.handover)
+ * and chained trials (stage.chain_trials) hear the caretaker; its chained trials are
+ * integrated trials (their length, hold and focus bonus) */
+static unsigned value_readers(const stConfig *cfg, const stConfigKey *k) {
+  const int chain = cfg->stage_chain_trials > 0;
+  if ((cfg->stage_handover || chain) && !strcmp(k->section, "caretaker")) return ST_CONFIG_MAIN_PRIM;
+  if (chain && !strcmp(k->section, "integrated") &&
+      (!strcmp(k->name, "steps") || !strcmp(k->name, "hold_steps") ||
+       !strcmp(k->name, "focus_bonus_steps")))
+    return ST_CONFIG_MAIN_PRIM;
+  return 0u;
+}
+
 stStatus st_config_check_changes(const stConfig *cfg, const stConfig *base, const char *base_name,
                                  unsigned stages, char *err, size_t errsz) {
   for (int i = 0; i < NKEYS; i++) {
     const stConfigKey *k = &g_keys[i];
     const stageKey *r = stage_key(k);
-    if (!r || (r->stages & stages) || is_default(cfg, base, k)) continue;
+    if (!r || ((r->stages | value_readers(cfg, k)) & stages) || is_default(cfg, base, k)) continue;
     char v[ST_CONFIG_STR_MAX + 32], bv[ST_CONFIG_STR_MAX + 32], readers[256], run[256];
     format_value(cfg, k, v, sizeof v);
     format_value(base, k, bv, sizeof bv);

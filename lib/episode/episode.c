@@ -60,7 +60,8 @@ void st_workspace_free(stWorkspace *ws) {
 }
 
 const char *st_word_source_name(stWordSource s) {
-  static const char *const names[ST_WORDS_COUNT] = {"none", "fixed", "caretaker", "selftalk"};
+  static const char *const names[ST_WORDS_COUNT] = {"none", "fixed", "caretaker", "selftalk",
+                                                                    "handover"};
   return (int)s >= 0 && s < ST_WORDS_COUNT ? names[s] : "?";
 }
 
@@ -151,9 +152,11 @@ static stStatus check_episode(const stController *ctl, const stWords *words, cha
     return st__errf(err, errsz, "episode: self talk needs a controller that produces labels "
                     "(linguistic outputs 13-16: a type A network)"), ST_ERR_ARG;
   if ((int)words->source < 0 || words->source >= ST_WORDS_COUNT ||
-      (words->source == ST_WORDS_FIXED && (words->word < 0 || words->word >= ST_NPRIM)))
+      ((words->source == ST_WORDS_FIXED || words->source == ST_WORDS_HANDOVER) &&
+       (words->word < 0 || words->word >= ST_NPRIM)))
     return st__errf(err, errsz, "episode: word source %d, word %d (expected a source of "
-                    "stWordSource; a fixed word 0..3)", (int)words->source, words->word), ST_ERR_ARG;
+                    "stWordSource; a fixed or handed-over word 0..3)", (int)words->source,
+                    words->word), ST_ERR_ARG;
   return ST_OK;
 }
 
@@ -161,6 +164,7 @@ static stStatus check_episode(const stController *ctl, const stWords *words, cha
 typedef struct hearing {
   stCaretaker ct;
   int last_label; /* self talk: the label of the previous step */
+  int handover;   /* hand-over: the step the word was handed over at, -1 before */
 } hearing;
 
 static int heard_word(hearing *h, const stProtocol *p, const stWords *words, int step,
@@ -169,6 +173,10 @@ static int heard_word(hearing *h, const stProtocol *p, const stWords *words, int
     case ST_WORDS_FIXED: return words->word;
     case ST_WORDS_CARETAKER: return st_caretaker_word(&h->ct, &p->fitness, step, q, &w->contacts);
     case ST_WORDS_SELFTALK: return step == 0 ? -1 : h->last_label;
+    case ST_WORDS_HANDOVER:
+      if (h->handover < 0 && st_caretaker_word(&h->ct, &p->fitness, step, q, &w->contacts) >= words->word)
+        h->handover = step;
+      return h->handover >= 0 ? words->word : h->ct.label;
     default: return -1;
   }
 }
@@ -199,6 +207,7 @@ stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpe
   hearing h;
   st_caretaker_init(&h.ct, &p->cfg);
   h.last_label = -1;
+  h.handover = -1;
   double in[ST_NET_MAX_IN] = {0}, out[ST_NET_MAX_OUT] = {0}, ling[ST_NET_NLING];
   stQuantities q;
   st_quantities(w, &p->sensor, &q);
@@ -206,11 +215,17 @@ stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpe
   memset(&s, 0, sizeof s);
   s.world = w, s.q = &q, s.in = in, s.out = out, s.source = words->source;
   s.nout = ctl->noutputs ? ctl->noutputs : ST_NET_NOUT;
+  const int relative_off = words->source == ST_WORDS_HANDOVER;
   for (int step = 0; step < e->steps; step++) {
-    if (e->table_off_step >= 0 && step == e->table_off_step) st_world_set_object_table_collision(w, 0);
+    if (!relative_off && e->table_off_step >= 0 && step == e->table_off_step)
+      st_world_set_object_table_collision(w, 0);
     /* hear, sense, think, act */
     s.step = step;
     s.word = heard_word(&h, p, words, step, &q, w);
+    s.handover = h.handover;
+    if (relative_off && e->table_off_step >= 0 && h.handover >= 0 &&
+        step == h.handover + e->table_off_step)
+      st_world_set_object_table_collision(w, 0);
     st_net_label_input(s.word, words->scale, ling);
     st_sensor_inputs(w, &p->sensor, &q, s.focus_target, step == 0, ling, words->secondary, in,
                      ctl->ninputs);

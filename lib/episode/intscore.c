@@ -33,6 +33,16 @@ void st_integrated_def_from_config(const stConfig *c, stIntegratedDef *d) {
   st_pred_def_from_config(c, &d->pred);
 }
 
+void st_chain_def_from_config(const stConfig *c, stIntegratedDef *d) {
+  st_integrated_def_from_config(c, d);
+  d->arch = ST_ARCH_BASE;
+  d->words[0] = d->words[1] = ST_WORDS_CARETAKER;
+  d->fitness[0] = d->fitness[1] = ST_FIT_INTEGRATED;
+  d->first_variant = 0;
+  d->first_bonus_factor = 1.0;
+  d->trials = c->stage_chain_trials;
+}
+
 stIntPlan st_integrated_plan(const stIntegratedDef *d, int generation, int trial) {
   /* the first generation's variant (thesis 2.9.4.1): the caretaker in every trial, every trial
    * scored by the integrated fitness with its bonuses multiplied */

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/internal.h"
+#include "selftalk/integrated.h"
 #include "selftalk/postures.h"
 
 /* postures.vary_starts: an open or grasp trial starts from the first drawn variation of its
@@ -27,11 +28,49 @@ static void vary_start(const stProtocol *p, int generation, stTrialSpec *t) {
   }
 }
 
+/* main-prim's trial lengths, and when the object-table collision goes off (-1: never) */
+static int main_steps(const stConfig *c, int primitive) {
+  const int steps[ST_NPRIM] = {c->stage_main_reach_steps, c->stage_main_open_steps,
+                               c->stage_main_grasp_steps, c->stage_main_move_steps};
+  return steps[primitive];
+}
+
+static int main_table_off(const stConfig *c, int primitive) {
+  return primitive == ST_PRIM_GRASP  ? c->stage_grasp_table_off_step
+         : primitive == ST_PRIM_MOVE ? c->stage_move_table_off_step
+                                     : -1;
+}
+
+/* hand-over trial j: from reach posture k with the reach trials' object offset, as a chain
+ * starts (SPEC 12). Grasp keeps its table removal (its success is holding the object without
+ * the table), counted from the hand-over; move keeps the table, since the chain hands it an
+ * object resting on it, not one already held as its fixed trials do */
+static void handover_spec(const stProtocol *p, int j, stTrialSpec *t) {
+  const stConfig *c = &p->cfg;
+  t->primitive = ST_PRIM_OPEN + j / ST_NPOSTURE;
+  t->k = j % ST_NPOSTURE;
+  t->target_index = t->k % 2;
+  t->handover = 1;
+  t->rollin_steps = c->stage_handover_rollin_steps;
+  memcpy(t->qhat0, p->posture[ST_PRIM_REACH][t->k], sizeof t->qhat0);
+  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_HANDOVER, (uint64_t)t->generation, 0,
+                           (uint64_t)j);
+  st_scene_object(&p->scene, t->k, 1, &rng, t->obj);
+  st_scene_target(&p->scene, t->target_index, &rng, t->target);
+  t->steps = main_steps(c, t->primitive);
+  t->table_off_step = t->primitive == ST_PRIM_GRASP ? c->stage_grasp_table_off_step : -1;
+}
+
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
   const stConfig *c = &p->cfg;
   memset(t, 0, sizeof *t);
   t->stage = stage;
   t->index = index;
+  t->generation = generation;
+  if (stage == ST_STAGE_MAIN && index >= ST_PRIM_TRIALS) {
+    handover_spec(p, index - ST_PRIM_TRIALS, t);
+    return;
+  }
   t->primitive = index / ST_NPOSTURE;
   t->k = index % ST_NPOSTURE;
   t->target_index = t->k % 2;
@@ -46,13 +85,15 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
     t->steps = c->stage_simple_steps;
     t->table_off_step = -1;
   } else {
-    const int steps[ST_NPRIM] = {c->stage_main_reach_steps, c->stage_main_open_steps,
-                                 c->stage_main_grasp_steps, c->stage_main_move_steps};
-    t->steps = steps[t->primitive];
-    t->table_off_step = t->primitive == ST_PRIM_GRASP  ? c->stage_grasp_table_off_step
-                        : t->primitive == ST_PRIM_MOVE ? c->stage_move_table_off_step
-                                                       : -1;
+    t->steps = main_steps(c, t->primitive);
+    t->table_off_step = main_table_off(c, t->primitive);
   }
+}
+
+void st_handover_fallback(const stProtocol *p, const stTrialSpec *h, stTrialSpec *t) {
+  st_trial_spec(p, ST_STAGE_MAIN, h->generation, h->primitive * ST_NPOSTURE + h->k, t);
+  memcpy(t->target, h->target, sizeof t->target);
+  t->index = h->index;
 }
 
 void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_key,
@@ -62,11 +103,12 @@ void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_k
   memcpy(e->qhat0, t->qhat0, sizeof e->qhat0);
   memcpy(e->obj, t->obj, sizeof e->obj);
   memcpy(e->target, t->target, sizeof e->target);
-  e->steps = t->steps;
+  e->steps = t->handover ? t->rollin_steps + t->steps : t->steps;
   e->table_off_step = t->table_off_step;
   e->seed_key = seed_key;
-  /* the primitive's word every step; primitive stages never give the secondary input */
-  words->source = ST_WORDS_FIXED;
+  /* the primitive's word every step (hand-over trials: once the caretaker hands over);
+   * primitive stages never give the secondary input */
+  words->source = t->handover ? ST_WORDS_HANDOVER : ST_WORDS_FIXED;
   words->word = t->primitive;
   words->scale = p->cfg.network_linguistic_input;
   words->secondary = 0.0;
@@ -85,6 +127,7 @@ static double masked_penalty(const stTraceStep *s, int mask) {
 
 void st_score_begin(stTrialScore *sc, const stTrialSpec *t) {
   memset(sc, 0, sizeof *sc);
+  sc->r.handover_step = -1;
   sc->stage = t->stage;
   sc->primitive = t->primitive;
   sc->steps = t->steps;
@@ -150,8 +193,7 @@ static void prim_begin(void *self) {
   st_score_begin(&s->sc, s->t);
 }
 
-static int prim_step(void *self, stTraceStep *ts) {
-  stPrimScorer *s = self;
+static int prim_score(stPrimScorer *s, stTraceStep *ts) {
   const stTrialSpec *t = s->t;
   const int mask = st_penalty_mask(t->stage, t->primitive, ts->step,
                                    t->table_off_step >= 0 ? t->table_off_step : t->steps);
@@ -160,6 +202,32 @@ static int prim_step(void *self, stTraceStep *ts) {
                                   ts->unstable, &ts->S, &ts->P);
   ts->success_now = st_success_now(&s->p->fitness, t->stage, t->primitive, ts->q);
   return event;
+}
+
+/* a hand-over trial: nothing is scored while the chain rolls in; a roll-in that fails (the
+ * object fell, the world diverged, no hand-over in time) ends the episode for the fallback;
+ * from the hand-over on, the primitive's scoring with steps counted from it */
+static int handover_score(stPrimScorer *s, stTraceStep *ts) {
+  const stTrialSpec *t = s->t;
+  if (ts->handover < 0) {
+    ts->S = ts->P = 0.0;
+    ts->success_now = 0;
+    return ts->fell || ts->unstable || ts->step + 1 >= t->rollin_steps ? ST_END_FAILURE : -1;
+  }
+  s->sc.r.handover_step = ts->handover;
+  stTraceStep rel = *ts;
+  rel.step = ts->step - ts->handover;
+  int event = prim_score(s, &rel);
+  ts->S = rel.S;
+  ts->P = rel.P;
+  ts->success_now = rel.success_now;
+  if (event < 0 && rel.step + 1 >= t->steps) event = ST_END_FULL; /* the primitive's length */
+  return event;
+}
+
+static int prim_step(void *self, stTraceStep *ts) {
+  stPrimScorer *s = self;
+  return s->t->handover ? handover_score(s, ts) : prim_score(s, ts);
 }
 
 static void prim_end(void *self, const stWorld *w) {
@@ -176,15 +244,32 @@ stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec 
   return sc;
 }
 
-stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                           const stController *ctl, uint64_t seed_key, stTrialResult *r,
-                           stTraceFn trace, void *ctx, char *err, size_t errsz) {
+static stStatus run_episode(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                            const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                            stTraceFn trace, void *ctx, char *err, size_t errsz) {
   stEpisodeSpec e;
   stWords words;
   st_trial_episode(p, t, seed_key, &e, &words);
   stPrimScorer ps;
   const stScorer sc = st_prim_scorer(&ps, p, t, r);
   return st_episode_run(p, ws, &e, ctl, &words, &sc, trace, ctx, err, errsz);
+}
+
+stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                           const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                           stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  stStatus st = run_episode(p, ws, t, ctl, seed_key, r, trace, ctx, err, errsz);
+  if (st || !t->handover || r->handover_step >= 0) return st;
+  if (!p->cfg.stage_handover_fallback) { /* the chain broke before the primitive: nothing earned */
+    memset(r, 0, sizeof *r);
+    r->steps = t->steps;
+    r->success_step = r->handover_step = -1;
+    r->end = ST_END_QUIET;
+    return ST_OK;
+  }
+  stTrialSpec fallback;
+  st_handover_fallback(p, t, &fallback);
+  return run_episode(p, ws, &fallback, ctl, seed_key, r, trace, ctx, err, errsz);
 }
 
 stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
@@ -204,34 +289,96 @@ stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t
   return st_trial_run_forced(p, ws, t, net, NULL, 0, seed_key, r, trace, ctx, err, errsz);
 }
 
+/* an individual's sums over its trials, per primitive (eq. 2.3) */
+typedef struct stageSums {
+  double sum_sp[ST_NPRIM], bonus[ST_NPRIM];
+  long n[ST_NPRIM];
+} stageSums;
+
+uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index) {
+  const uint64_t seed = (uint64_t)p->cfg.run_seed;
+  if (index >= ST_PRIM_TRIALS)
+    return st_rng_keyed(seed, ST_RNG_HANDOVER_SOLVER, (uint64_t)generation, (uint64_t)individual,
+                        (uint64_t)(index - ST_PRIM_TRIALS)).key;
+  return st_rng_keyed(seed, ST_RNG_TRIAL, (uint64_t)generation, (uint64_t)individual,
+                      (uint64_t)index).key;
+}
+
+int st_stage_trials(const stProtocol *p, stStage stage) {
+  return stage == ST_STAGE_MAIN && p->cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
+}
+
+/* runs trial `index` of the generation and adds it to its primitive's sums */
+static stStatus add_trial(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
+                          int individual, int index, const stNetParams *net, stageSums *sums,
+                          stTrialResult *r, char *err, size_t errsz) {
+  stTrialSpec t;
+  st_trial_spec(p, stage, generation, index, &t);
+  const uint64_t key = st_trial_seed_key(p, generation, individual, index);
+  stStatus st = st_trial_run(p, ws, &t, net, key, r, NULL, NULL, err, errsz);
+  if (st) return st;
+  sums->sum_sp[t.primitive] += r->sum_s - r->sum_p;
+  sums->n[t.primitive] += r->steps;
+  sums->bonus[t.primitive] += r->success ? p->fitness.bonus : 0.0;
+  return ST_OK;
+}
+
+/* main-prim's chained trials: eq. 2.14 over the integrated stage's trials with the caretaker's
+ * words; they count among the trials that completing the stage needs solved */
+static stStatus chain_evaluate(const stProtocol *p, stWorkspace *ws, int generation,
+                               int individual, const stNetParams *net, stEvaluation *e, char *err,
+                               size_t errsz) {
+  stIntegratedDef def;
+  st_chain_def_from_config(&p->cfg, &def);
+  stIntEvaluation ie;
+  stStatus st = st_int_evaluate(p, &def, ws, generation, individual, net, &ie, err, errsz);
+  if (st) return st;
+  e->f_chain = ie.fitness;
+  e->chain_trials = ie.ntrials;
+  e->chain_successes = ie.successes;
+  memcpy(e->chain_success, ie.success, sizeof e->chain_success);
+  e->ntrials += ie.ntrials;
+  e->successes += ie.successes;
+  e->unstable += ie.unstable;
+  return ST_OK;
+}
+
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, stEvaluation *e, char *err,
                            size_t errsz) {
   memset(e, 0, sizeof *e);
-  double sum_sp[ST_NPRIM] = {0}, bonus[ST_NPRIM] = {0};
-  long n[ST_NPRIM] = {0};
-  for (int i = 0; i < ST_PRIM_TRIALS; i++) {
-    stTrialSpec t;
-    st_trial_spec(p, stage, generation, i, &t);
-    if (!(p->primitives >> t.primitive & 1u)) continue;
-    e->ntrials++;
+  stageSums sums;
+  memset(&sums, 0, sizeof sums);
+  const int ntrials = st_stage_trials(p, stage);
+  for (int i = 0; i < ntrials; i++) {
+    /* fixed trials i / 4 and hand-over trials 1 + (i - 16) / 4: the primitive of trial i */
+    const int prim = i < ST_PRIM_TRIALS ? i / ST_NPOSTURE : ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE;
+    if (!(p->primitives >> prim & 1u)) continue;
     stTrialResult r;
-    uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
-                                (uint64_t)individual, (uint64_t)i).key;
-    stStatus st = st_trial_run(p, ws, &t, net, key, &r, NULL, NULL, err, errsz);
+    stStatus st = add_trial(p, ws, stage, generation, individual, i, net, &sums, &r, err, errsz);
     if (st) return st;
-    sum_sp[t.primitive] += r.sum_s - r.sum_p;
-    n[t.primitive] += r.steps;
-    bonus[t.primitive] += r.success ? p->fitness.bonus : 0.0;
-    e->success[i] = (uint8_t)r.success;
+    e->ntrials++;
     e->successes += r.success;
     e->unstable += r.unstable;
+    if (i < ST_PRIM_TRIALS) {
+      e->success[i] = (uint8_t)r.success;
+    } else {
+      e->handover_trials++;
+      e->handover_successes += r.success;
+      e->handovers += r.handover_step >= 0;
+      e->handover_success[i - ST_PRIM_TRIALS] = (uint8_t)r.success;
+    }
   }
-  double fp[ST_NPRIM];
+  double fp[ST_NPRIM + 1];
   int nprim = 0;
   for (int k = 0; k < ST_NPRIM; k++) {
-    e->fp[k] = st_primitive_fitness(&p->fitness, bonus[k], sum_sp[k], n[k]);
+    e->fp[k] = st_primitive_fitness(&p->fitness, sums.bonus[k], sums.sum_sp[k], sums.n[k]);
     if (p->primitives >> k & 1u) fp[nprim++] = e->fp[k];
+  }
+  if (stage == ST_STAGE_MAIN && p->cfg.stage_chain_trials > 0) {
+    stStatus st = chain_evaluate(p, ws, generation, individual, net, e, err, errsz);
+    if (st) return st;
+    fp[nprim++] = e->f_chain;
   }
   e->fitness = st_harmonic_fitness(&p->fitness, fp, nprim);
   return ST_OK;

@@ -49,12 +49,12 @@ static uint64_t fnv_config(uint64_t h, const stConfig *cfg) {
   return h;
 }
 
-uint64_t st__post_fingerprint(const stConfig *cfg, stPostTest test, int caretaker,
+uint64_t st__post_fingerprint(const stConfig *cfg, stPostTest test, int variant,
                               const char *condition, const stPostIndividual *ind, int nind) {
   uint64_t h = 14695981039346656037ull;
   h = fnv_config(h, cfg);
   h = fnv_int(h, test);
-  h = fnv_int(h, caretaker);
+  h = fnv_int(h, variant);
   h = fnv_str(h, condition);
   h = fnv_int(h, nind);
   for (int i = 0; i < nind; i++) {

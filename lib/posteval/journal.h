@@ -13,7 +13,7 @@
 /* What the results depend on: the resolved configuration, the test, its words and condition,
  * and every individual (run, label, rank, generation, exclusion, genes). A journal of another
  * fingerprint belongs to another test. */
-uint64_t st__post_fingerprint(const stConfig *cfg, stPostTest test, int caretaker,
+uint64_t st__post_fingerprint(const stConfig *cfg, stPostTest test, int variant,
                               const char *condition, const stPostIndividual *ind, int nind);
 
 /* Writes the done units (done[u] != 0) of `units` atomically to `path`. */

@@ -108,12 +108,21 @@ void st_post_episode(const stProtocol *p, const stPostTrial *t, stEpisodeSpec *e
 
 /* ---- words, conditions, exclusion ---- */
 
-stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, int caretaker,
+stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, stPostVariant variant,
                        stWordSource *w, char *err, size_t errsz) {
-  if (caretaker && test != ST_POST_GENERALISATION)
+  if (variant == ST_POST_CARETAKER && test != ST_POST_GENERALISATION)
     return st__errf(err, errsz, "the caretaker variant belongs to the generalisation test (ST-CT0, "
                     "ST0; the integration test always hears the caretaker)"), ST_ERR_ARG;
-  if (test == ST_POST_INTEGRATION || caretaker) {
+  if (variant == ST_POST_NO_WORDS && test != ST_POST_INTEGRATION)
+    return st__errf(err, errsz, "the no-words variant belongs to the integration test (robustness "
+                    "and generalisation already hear the condition's autonomous words)"), ST_ERR_ARG;
+  if (variant != ST_POST_OWN_WORDS && variant != ST_POST_CARETAKER && variant != ST_POST_NO_WORDS)
+    return st__errf(err, errsz, "post-evaluation variant %d (expected 0..2)", (int)variant), ST_ERR_ARG;
+  if (variant == ST_POST_NO_WORDS) {
+    *w = ST_WORDS_NONE;
+    return ST_OK;
+  }
+  if (test == ST_POST_INTEGRATION || variant == ST_POST_CARETAKER) {
     *w = ST_WORDS_CARETAKER;
     return ST_OK;
   }
@@ -167,9 +176,11 @@ static const char *prims_name(const stConfig *c) {
   }
 }
 
-void st_post_condition(const stConfig *c, stPostTest test, int caretaker, char *buf, size_t n) {
-  if (test == ST_POST_INTEGRATION) snprintf(buf, n, "%s", prims_name(c));
-  else snprintf(buf, n, "%s%s", table21_name(c), caretaker ? "0" : "");
+void st_post_condition(const stConfig *c, stPostTest test, stPostVariant variant, char *buf,
+                       size_t n) {
+  if (test == ST_POST_INTEGRATION)
+    snprintf(buf, n, "%s%s", prims_name(c), variant == ST_POST_NO_WORDS ? "-nowords" : "");
+  else snprintf(buf, n, "%s%s", table21_name(c), variant == ST_POST_CARETAKER ? "0" : "");
 }
 
 int st_post_excluded(const stIntegratedDef *idef, int generation, const uint8_t *success, int n) {

@@ -319,7 +319,7 @@ static stStatus load_individuals(postRun *R, char *err, size_t errsz) {
   R->ind = calloc((size_t)R->nind, sizeof *R->ind);
   if (!R->ind) return st__errf(err, errsz, "posteval: out of memory"), ST_ERR_NOMEM;
   const int ngenes = st_arch_ngenes((stNetArch)R->cfg->network_arch);
-  const int exclusion = d->test == ST_POST_GENERALISATION && !d->caretaker;
+  const int exclusion = d->test == ST_POST_GENERALISATION && !d->variant;
   for (int i = 0; i < d->ninputs; i++) {
     stStatus st = integration
                       ? st_post_load_population(d->inputs[i], per, ngenes, &R->ind[i * per], err, errsz)
@@ -364,10 +364,10 @@ static stStatus plan(postRun *R, char *err, size_t errsz) {
   const stPostRunDef *d = R->def;
   st_post_def_from_config(R->cfg, d->test, &R->pd);
   st_integrated_def_from_config(R->cfg, &R->idef);
-  stStatus st = st_post_words(&R->idef, d->test, d->caretaker, &R->words, err, errsz);
+  stStatus st = st_post_words(&R->idef, d->test, d->variant, &R->words, err, errsz);
   if (st) return st;
   if (d->condition) snprintf(R->condition, sizeof R->condition, "%s", d->condition);
-  else st_post_condition(R->cfg, d->test, d->caretaker, R->condition, sizeof R->condition);
+  else st_post_condition(R->cfg, d->test, d->variant, R->condition, sizeof R->condition);
   if (!R->condition[0] || strpbrk(R->condition, ",\"| \t\r\n"))
     return st__errf(err, errsz, "condition '%s': not a plain label (expected a name without "
                     "commas, quotes, '|' or blanks)", R->condition), ST_ERR_ARG;
@@ -424,7 +424,7 @@ static void remove_stale_tmp(const postRun *R) {
 static stStatus open_journal(postRun *R, char *err, size_t errsz) {
   const stPostRunDef *d = R->def;
   snprintf(R->journal, sizeof R->journal, "%s/%s", d->out_dir, ST_POST_JOURNAL);
-  R->fingerprint = st__post_fingerprint(R->cfg, d->test, d->caretaker, R->condition, R->ind,
+  R->fingerprint = st__post_fingerprint(R->cfg, d->test, d->variant, R->condition, R->ind,
                                         R->nind);
   R->journal_every = d->journal_seconds > 0 ? d->journal_seconds
                      : d->journal_seconds < 0 ? 0.0 : ST_POST_JOURNAL_SECONDS;

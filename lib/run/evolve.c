@@ -197,7 +197,18 @@ static stStatus append(const char *path, const char *text, char *err, size_t err
   return ST_OK;
 }
 
-/* fitness.csv's columns; then one best_tI column per trial */
+/* a primitive run with main-prim */
+static int has_main(const run *R) {
+  for (int i = 0; i < R->nstages; i++)
+    if (!R->integrated && R->stages[i] == ST_STAGE_MAIN) return 1;
+  return 0;
+}
+
+/* main-prim's hand-over trials (stage.handover) and chained trials (stage.chain_trials) */
+static int has_handover(const run *R) { return has_main(R) && R->cfg->stage_handover; }
+static int chain_trials(const run *R) { return has_main(R) ? R->cfg->stage_chain_trials : 0; }
+
+/* fitness.csv's columns; then one best_tI column per trial (and best_hI per hand-over trial) */
 static void csv_header(const run *R, char *buf, size_t n) {
   int k = snprintf(buf, n, "%s",
                    R->integrated
@@ -207,6 +218,18 @@ static void csv_header(const run *R, char *buf, size_t n) {
                          "best_successes,best_F_reach,best_F_open,best_F_grasp,best_F_move");
   const int trials = R->integrated ? R->idef.trials : ST_PRIM_TRIALS;
   for (int t = 0; t < trials && k < (int)n; t++) k += snprintf(buf + k, n - (size_t)k, ",best_t%d", t);
+  /* main-prim's hand-over trials (stage.handover): how many handed over, and each one solved */
+  if (has_handover(R) && k < (int)n) {
+    k += snprintf(buf + k, n - (size_t)k, ",best_handovers");
+    for (int t = 0; t < ST_HANDOVER_TRIALS && k < (int)n; t++)
+      k += snprintf(buf + k, n - (size_t)k, ",best_h%d", t);
+  }
+  /* main-prim's chained trials (stage.chain_trials): their eq. 2.14 fitness and each solved */
+  if (chain_trials(R) && k < (int)n) {
+    k += snprintf(buf + k, n - (size_t)k, ",best_F_chain");
+    for (int t = 0; t < chain_trials(R) && k < (int)n; t++)
+      k += snprintf(buf + k, n - (size_t)k, ",best_c%d", t);
+  }
   if (k < (int)n) snprintf(buf + k, n - (size_t)k, "\n");
 }
 
@@ -343,6 +366,16 @@ static void csv_row(const run *R, int gen, const genStats *s, char *row, size_t 
                  stage_label(R), R->stage_gen, s->all, be->successes, be->fp[0], be->fp[1], be->fp[2],
                  be->fp[3]);
     for (int t = 0; t < ST_PRIM_TRIALS; t++) k += snprintf(row + k, n - (size_t)k, ",%d", be->success[t]);
+    if (has_handover(R)) {
+      k += snprintf(row + k, n - (size_t)k, ",%d", be->handovers);
+      for (int t = 0; t < ST_HANDOVER_TRIALS; t++)
+        k += snprintf(row + k, n - (size_t)k, ",%d", be->handover_success[t]);
+    }
+    if (chain_trials(R)) { /* 0 in simple-prim generations */
+      k += snprintf(row + k, n - (size_t)k, ",%.17g", be->f_chain);
+      for (int t = 0; t < chain_trials(R); t++)
+        k += snprintf(row + k, n - (size_t)k, ",%d", t < be->chain_trials ? be->chain_success[t] : 0);
+    }
   }
   snprintf(row + k, n - (size_t)k, "\n");
 }
@@ -380,11 +413,19 @@ static void progress(const run *R, int gen, const genStats *s) {
             be->successes, be->ntrials, rate, e1, e2, unst);
   } else {
     const stEvaluation *be = &R->eval[s->best];
+    char ho[128] = "";
+    int m = 0;
+    if (be->handover_trials)
+      m += snprintf(ho, sizeof ho, " (hand-over %2d/%d, %2d handed over)", be->handover_successes,
+                    be->handover_trials, be->handovers);
+    if (be->chain_trials)
+      snprintf(ho + m, sizeof ho - (size_t)m, " (chained %d/%d, F_chain %.1f)", be->chain_successes,
+               be->chain_trials, be->f_chain);
     fprintf(f,
-            "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/%d all-solved %3d | "
+            "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/%d%s all-solved %3d | "
             "%.2f gen/s elapsed %s left <= %s%s\n",
             gen, stage_label(R), R->fitness[s->best], s->mean, R->cfg->fitness_bonus * be->successes,
-            be->successes, be->ntrials, s->all, rate, e1, e2, unst);
+            be->successes, be->ntrials, ho, s->all, rate, e1, e2, unst);
   }
   fflush(f);
 }
@@ -409,8 +450,8 @@ static stStatus finish(run *R, int gen, int stage_complete, char *err, size_t er
 static int next_stage(run *R, int gen, int all, stStatus *st, char *err, size_t errsz) {
   const int n = st_ga_def(R->ga)->population;
   if (R->def->progress)
-    fprintf(R->def->progress, "evolve: %s complete at generation %d (%d genotypes solve all 16 trials)\n",
-            stage_label(R), gen, all);
+    fprintf(R->def->progress, "evolve: %s complete at generation %d (%d genotypes solve all %d trials)\n",
+            stage_label(R), gen, all, R->eval[st_ga_ranked(R->ga, 0)].ntrials);
   if (R->stage_idx + 1 >= R->nstages) return 1;
   R->stage_idx++;
   R->stage_gen = 0;

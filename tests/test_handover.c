@@ -1,0 +1,391 @@
+/* SPDX-License-Identifier: MIT
+ * Main-prim's hand-over trials (stage.handover, SPEC 12, docs/PROTOCOL.md "Hand-over trials"):
+ * their specs, the roll-in under the caretaker, the scoring from the hand-over, the fallback
+ * and their share of F_p (eq. 2.3), checked against a caretaker episode and against eq. 2.3
+ * recomputed by hand from the trials' own results. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "selftalk/config.h"
+#include "selftalk/genome.h"
+#include "selftalk/integrated.h"
+#include "selftalk/trial.h"
+#include "test_util.h"
+
+/* the best genotype of a committed primitive run that completed main-prim */
+static const char EVOLVED[] = "data/evolved/prims_s2/population.genome";
+
+static stProtocol *protocol(int handover, int rollin) {
+  stConfig c;
+  st_config_default(&c);
+  c.stage_stages = ST_STAGES_MAIN;
+  c.stage_handover = handover;
+  c.stage_handover_fallback = rollin < 0;
+  if (rollin < 0) rollin = -rollin;
+  if (rollin > 0) c.stage_handover_rollin_steps = rollin;
+  stProtocol *p = NULL;
+  char err[512] = "";
+  if (st_protocol_create(&c, &p, err, sizeof err)) fprintf(stderr, "%s\n", err);
+  return p;
+}
+
+static int evolved_net(stNetParams *np) {
+  stGenomeSet set;
+  char err[512] = "";
+  if (st_genome_set_read(EVOLVED, st_arch_ngenes(ST_ARCH_BASE), &set, err, sizeof err)) {
+    fprintf(stderr, "%s\n", err);
+    return 0;
+  }
+  const int ok = st_net_decode(NULL, ST_ARCH_BASE, &set.genome[0], np, err, sizeof err) == ST_OK;
+  st_genome_set_free(&set);
+  return ok;
+}
+
+/* Trials 16..27: open, grasp, move (1 + j / 4) from reach posture k = j % 4, the object
+ * within the reach trials' +-2 cm of position k, the target within +-2 cm of T(k mod 2), the
+ * primitive's main-prim length (60, 80, 70 steps), the grasp table removal 40 steps after the
+ * hand-over, the table kept for open and move, a roll-in of 170 steps; the same in another
+ * protocol, other offsets in another generation. The fixed trials are the same with and
+ * without stage.handover. The fallback: the fixed posture and object of (primitive, k), the
+ * hand-over trial's target. */
+static void test_handover_specs(void) {
+  stProtocol *p = protocol(1, 0), *off = protocol(0, 0);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(p);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(off);
+  CU_ASSERT_EQUAL(st_stage_trials(p, ST_STAGE_MAIN), 28);
+  CU_ASSERT_EQUAL(st_stage_trials(p, ST_STAGE_SIMPLE), 16);
+  CU_ASSERT_EQUAL(st_stage_trials(off, ST_STAGE_MAIN), 16);
+  static const int steps[4] = {100, 60, 80, 70}, table_off[4] = {-1, -1, 40, -1};
+  const double T[2][3] = {{0.25, 0.10, 0.17}, {0.25, -0.10, 0.17}}; /* T0 at +y, T1 at -y (SPEC 3) */
+  for (int gen = 0; gen < 2; gen++) {
+    for (int i = 0; i < ST_PRIM_TRIALS; i++) {
+      stTrialSpec a, b;
+      st_trial_spec(p, ST_STAGE_MAIN, gen, i, &a);
+      st_trial_spec(off, ST_STAGE_MAIN, gen, i, &b);
+      CU_ASSERT(memcmp(&a, &b, sizeof a) == 0);
+      CU_ASSERT_EQUAL(a.handover, 0);
+    }
+    for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
+      stTrialSpec t, t2, other, fb;
+      st_trial_spec(p, ST_STAGE_MAIN, gen, ST_PRIM_TRIALS + j, &t);
+      st_trial_spec(off, ST_STAGE_MAIN, gen, ST_PRIM_TRIALS + j, &t2);
+      st_trial_spec(p, ST_STAGE_MAIN, gen + 2, ST_PRIM_TRIALS + j, &other);
+      const int prim = 1 + j / 4, k = j % 4;
+      CU_ASSERT_EQUAL(t.primitive, prim);
+      CU_ASSERT_EQUAL(t.k, k);
+      CU_ASSERT_EQUAL(t.handover, 1);
+      CU_ASSERT_EQUAL(t.rollin_steps, 170);
+      CU_ASSERT_EQUAL(t.steps, steps[prim]);
+      CU_ASSERT_EQUAL(t.table_off_step, table_off[prim]);
+      CU_ASSERT(memcmp(t.qhat0, p->posture[ST_PRIM_REACH][k], sizeof t.qhat0) == 0);
+      double base[3];
+      st_scene_object(&p->scene, k, 0, NULL, base);
+      CU_ASSERT(fabs(t.obj[0] - base[0]) <= 0.02 && fabs(t.obj[1] - base[1]) <= 0.02);
+      CU_ASSERT(t.obj[0] != base[0] && t.obj[2] == base[2]);
+      for (int a = 0; a < 3; a++) CU_ASSERT(fabs(t.target[a] - T[k % 2][a]) <= 0.02 + 1e-12);
+      CU_ASSERT(memcmp(t.obj, t2.obj, sizeof t.obj) == 0); /* the spec, not the key, decides */
+      CU_ASSERT(memcmp(t.obj, other.obj, sizeof t.obj) != 0);
+      st_handover_fallback(p, &t, &fb);
+      CU_ASSERT_EQUAL(fb.handover, 0);
+      CU_ASSERT_EQUAL(fb.primitive, prim);
+      CU_ASSERT_EQUAL(fb.index, ST_PRIM_TRIALS + j);
+      CU_ASSERT(memcmp(fb.qhat0, p->posture[prim][k], sizeof fb.qhat0) == 0);
+      CU_ASSERT(memcmp(fb.obj, base, sizeof base) == 0);
+      CU_ASSERT(memcmp(fb.target, t.target, sizeof fb.target) == 0);
+      CU_ASSERT_EQUAL(fb.table_off_step, prim == ST_PRIM_MOVE ? 10 : table_off[prim]);
+    }
+  }
+  st_protocol_destroy(p);
+  st_protocol_destroy(off);
+}
+
+/* what a trace keeps of each step */
+typedef struct rec {
+  int n;
+  int word[400], handover[400];
+  double obj[400][3], S[400], P[400], pen_table[400], pen_moving[400];
+} rec;
+
+static void on_step(void *ctx, const stTraceStep *s) {
+  rec *r = ctx;
+  if (r->n >= 400) return;
+  r->word[r->n] = s->word;
+  r->handover[r->n] = s->handover;
+  memcpy(r->obj[r->n], s->world->obj, sizeof r->obj[0]);
+  r->S[r->n] = s->S;
+  r->P[r->n] = s->P;
+  r->pen_table[r->n] = s->pen_table;
+  r->pen_moving[r->n] = s->pen_moving;
+  r->n++;
+}
+
+/* nothing is scored in an integrated-free caretaker episode: only the words and states */
+static int null_step(void *self, stTraceStep *s) {
+  (void)self;
+  (void)s;
+  return -1;
+}
+
+/* A hand-over trial rolls in as the caretaker's chain does: the same words and, bit for bit,
+ * the same states up to the step where the caretaker's word first reaches the primitive; from
+ * there the primitive's word every step, its main-prim scoring with steps counted from the
+ * hand-over (the grasp's moving penalty for its first 40 steps only), its length at most. */
+static void test_handover_rollin(void) {
+  stProtocol *p = protocol(1, 0);
+  stNetParams np;
+  CU_ASSERT_PTR_NOT_NULL_FATAL(p);
+  CU_ASSERT_FATAL(evolved_net(&np));
+  stWorkspace ws = {NULL, NULL};
+  char err[512] = "";
+  int handed = 0;
+  for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
+    stTrialSpec t;
+    st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_TRIALS + j, &t);
+    const uint64_t key = st_trial_seed_key(p, 0, 0, ST_PRIM_TRIALS + j);
+    static rec h, c;
+    memset(&h, 0, sizeof h);
+    memset(&c, 0, sizeof c);
+    stTrialResult r;
+    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, key, &r, on_step, &h, err, sizeof err), ST_OK);
+    /* the caretaker's chain from the same start, unscored, the table kept */
+    stEpisodeSpec e;
+    stWords w;
+    st_trial_episode(p, &t, key, &e, &w);
+    e.table_off_step = -1;
+    w.source = ST_WORDS_CARETAKER;
+    stNetController nc;
+    const stController ctl = st_net_controller(&nc, &np, NULL, 0);
+    const stScorer none = {NULL, null_step, NULL, NULL};
+    CU_ASSERT_EQUAL_FATAL(st_episode_run(p, &ws, &e, &ctl, &w, &none, on_step, &c, err, sizeof err), ST_OK);
+    int first = -1;
+    for (int s = 0; s < c.n && first < 0; s++)
+      if (c.word[s] >= t.primitive) first = s;
+    if (first < 0 || first >= t.rollin_steps) { /* no hand-over in time: nothing earned */
+      CU_ASSERT_EQUAL(r.handover_step, -1);
+      CU_ASSERT(r.sum_s == 0.0 && r.sum_p == 0.0 && r.success == 0 && r.steps_run == 0);
+      CU_ASSERT_EQUAL(r.steps, t.steps);
+      continue;
+    }
+    handed++;
+    CU_ASSERT_EQUAL(r.handover_step, first);
+    for (int s = 0; s < first; s++) {
+      CU_ASSERT_EQUAL(h.word[s], c.word[s]);
+      CU_ASSERT(memcmp(h.obj[s], c.obj[s], sizeof h.obj[s]) == 0);
+      CU_ASSERT(h.S[s] == 0.0 && h.P[s] == 0.0 && h.handover[s] == -1);
+    }
+    CU_ASSERT(h.n <= first + t.steps);
+    CU_ASSERT_EQUAL(r.steps_run, h.n - first);
+    double sum_s = 0.0;
+    for (int s = first; s < h.n; s++) {
+      CU_ASSERT_EQUAL(h.word[s], t.primitive);
+      CU_ASSERT_EQUAL(h.handover[s], first);
+      sum_s += h.S[s];
+      if (t.primitive == ST_PRIM_GRASP) /* table, and object moving before the table goes */
+        CU_ASSERT_EQUAL(h.P[s], h.pen_table[s] + (s - first < 40 ? h.pen_moving[s] : 0.0));
+    }
+    if (r.end == ST_END_FULL) CU_ASSERT_DOUBLE_EQUAL(r.sum_s, sum_s, 1e-9);
+  }
+  CU_ASSERT(handed >= 4); /* this individual reaches, and often opens, from most starts */
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+}
+
+/* A roll-in that cannot hand over (the caretaker first speaks at step 1, the roll-in must hand
+ * over before step 1) scores nothing over the primitive's length, or, with
+ * stage.handover_fallback, falls back: the result is, bit for bit, the fallback trial's. */
+static void test_handover_fallback(void) {
+  stProtocol *p = protocol(1, -1), *none = protocol(1, 1);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(none);
+  stNetParams np;
+  CU_ASSERT_PTR_NOT_NULL_FATAL(p);
+  CU_ASSERT_FATAL(evolved_net(&np));
+  stWorkspace ws = {NULL, NULL};
+  char err[512] = "";
+  for (int j = 0; j < ST_HANDOVER_TRIALS; j += 3) {
+    stTrialSpec t, fb;
+    st_trial_spec(p, ST_STAGE_MAIN, 3, ST_PRIM_TRIALS + j, &t);
+    st_handover_fallback(p, &t, &fb);
+    const uint64_t key = st_trial_seed_key(p, 3, 7, ST_PRIM_TRIALS + j);
+    stTrialResult r, want;
+    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, key, &r, NULL, NULL, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &fb, &np, key, &want, NULL, NULL, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(r.handover_step, -1);
+    CU_ASSERT(r.sum_s == want.sum_s && r.sum_p == want.sum_p && r.success == want.success &&
+              r.steps == want.steps && r.steps_run == want.steps_run);
+    CU_ASSERT(want.sum_s > 0.0);
+    CU_ASSERT_EQUAL_FATAL(st_trial_run(none, &ws, &t, &np, key, &r, NULL, NULL, err, sizeof err), ST_OK);
+    CU_ASSERT(r.handover_step == -1 && r.sum_s == 0.0 && r.sum_p == 0.0 && r.success == 0 &&
+              r.steps == t.steps && r.steps_run == 0 && r.end == ST_END_QUIET);
+  }
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+  st_protocol_destroy(none);
+}
+
+/* The evaluation: F_p of eq. 2.3 over a primitive's fixed and hand-over trials (bonus 10 per
+ * success, 100 / N_p times the sum of S - P, N_p the trials' full lengths), F their harmonic
+ * mean, recomputed here from each trial run alone; the counts of the evaluation. */
+static void test_handover_fitness(void) {
+  stProtocol *p = protocol(1, 0), *off = protocol(0, 0);
+  stNetParams np;
+  CU_ASSERT_PTR_NOT_NULL_FATAL(p);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(off);
+  CU_ASSERT_FATAL(evolved_net(&np));
+  stWorkspace ws = {NULL, NULL};
+  char err[512] = "";
+  const int gen = 1, ind = 5;
+  stEvaluation e, e0;
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
+  double sp[4] = {0}, bonus[4] = {0};
+  long n[4] = {0};
+  int successes = 0, hs = 0, handovers = 0;
+  for (int i = 0; i < ST_MAIN_TRIALS_MAX; i++) {
+    stTrialSpec t;
+    st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
+    stTrialResult r;
+    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, st_trial_seed_key(p, gen, ind, i), &r, NULL,
+                                       NULL, err, sizeof err), ST_OK);
+    sp[t.primitive] += r.sum_s - r.sum_p;
+    n[t.primitive] += r.steps;
+    bonus[t.primitive] += 10.0 * r.success;
+    successes += r.success;
+    if (i < ST_PRIM_TRIALS) {
+      CU_ASSERT_EQUAL(e.success[i], r.success);
+      CU_ASSERT_EQUAL(e0.success[i], r.success);
+    } else {
+      CU_ASSERT_EQUAL(e.handover_success[i - ST_PRIM_TRIALS], r.success);
+      hs += r.success;
+      handovers += r.handover_step >= 0;
+    }
+  }
+  CU_ASSERT_EQUAL(n[0], 400);
+  CU_ASSERT_EQUAL(n[1], 480);
+  CU_ASSERT_EQUAL(n[2], 640);
+  CU_ASSERT_EQUAL(n[3], 560);
+  double inv = 0.0;
+  for (int k = 0; k < 4; k++) {
+    const double fp = bonus[k] + 100.0 / (double)n[k] * sp[k];
+    CU_ASSERT_DOUBLE_EQUAL(e.fp[k], fp, 1e-9 * fabs(fp));
+    inv += 1.0 / (fp > 0.001 ? fp : 0.001);
+  }
+  CU_ASSERT_DOUBLE_EQUAL(e.fitness, 4.0 / inv, 1e-9 * e.fitness);
+  CU_ASSERT_EQUAL(e.fp[0], e0.fp[0]); /* reach has no hand-over trials */
+  CU_ASSERT(e.fp[3] != e0.fp[3]);
+  CU_ASSERT_EQUAL(e.ntrials, 28);
+  CU_ASSERT_EQUAL(e0.ntrials, 16);
+  CU_ASSERT_EQUAL(e0.handover_trials, 0);
+  CU_ASSERT_EQUAL(e.handover_trials, 12);
+  CU_ASSERT_EQUAL(e.successes, successes);
+  CU_ASSERT_EQUAL(e.handover_successes, hs);
+  CU_ASSERT_EQUAL(e.handovers, handovers);
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+  st_protocol_destroy(off);
+}
+
+/* Main-prim's chained trials (stage.chain_trials): F is the harmonic mean of the four F_p,
+ * which they leave unchanged, and f_chain; f_chain is eq. 2.14 over the integrated stage's
+ * trials with the caretaker's words: B (10 per move or focus bonus) + 100 / (n x 240) times
+ * the sum of max(0, S - P), recomputed here from each trial run alone; the stage's trial and
+ * success counts include them. */
+static void test_chain_fitness(void) {
+  stConfig c;
+  st_config_default(&c);
+  c.stage_stages = ST_STAGES_MAIN;
+  stProtocol *off = NULL, *p = NULL;
+  char err[512] = "";
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &off, err, sizeof err), ST_OK);
+  c.stage_chain_trials = 3;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
+  stNetParams np;
+  CU_ASSERT_FATAL(evolved_net(&np));
+  stWorkspace ws = {NULL, NULL};
+  const int gen = 2, ind = 3;
+  stEvaluation e, e0;
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
+  stIntegratedDef def;
+  st_chain_def_from_config(&p->cfg, &def);
+  CU_ASSERT_EQUAL(def.arch, ST_ARCH_BASE);
+  CU_ASSERT_EQUAL(def.steps, 240);
+  double bonus = 0.0, points = 0.0;
+  int successes = 0;
+  for (int i = 0; i < 3; i++) {
+    stIntPlan plan;
+    stIntTrialResult r;
+    CU_ASSERT_EQUAL_FATAL(st_int_trial_run(p, &def, &ws, gen, ind, i, &np, &plan, &r, NULL, NULL,
+                                           NULL, err, sizeof err), ST_OK);
+    CU_ASSERT(plan.words == ST_WORDS_CARETAKER && plan.fitness == ST_FIT_INTEGRATED &&
+              plan.bonus_factor == 1.0);
+    CU_ASSERT_EQUAL(e.chain_success[i], r.success);
+    bonus += 10.0 * (r.success + r.focus_bonus);
+    points += fmax(0.0, r.sum_s - r.sum_p);
+    successes += r.success;
+  }
+  const double f_chain = bonus + 100.0 / (3.0 * 240.0) * points;
+  CU_ASSERT_DOUBLE_EQUAL(e.f_chain, f_chain, 1e-9 * f_chain);
+  CU_ASSERT(e.f_chain > 0.0);
+  double inv = 1.0 / f_chain;
+  for (int k = 0; k < 4; k++) {
+    CU_ASSERT_EQUAL(e.fp[k], e0.fp[k]);
+    inv += 1.0 / e0.fp[k];
+  }
+  CU_ASSERT_DOUBLE_EQUAL(e.fitness, 5.0 / inv, 1e-9 * e.fitness);
+  CU_ASSERT_EQUAL(e.chain_trials, 3);
+  CU_ASSERT_EQUAL(e.ntrials, 19);
+  CU_ASSERT_EQUAL(e.successes, e0.successes + successes);
+  /* the integrated trials' keys act in main-prim with chained trials only */
+  st_config_default(&c);
+  c.integrated_steps = 200;
+  CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "integrated.steps");
+  c.stage_chain_trials = 2;
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
+  c.integrated_trials = 4; /* the chained trials' count is stage.chain_trials */
+  CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "integrated.trials");
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+  st_protocol_destroy(off);
+}
+
+/* The keys: the roll-in length acts only with stage.handover; the caretaker's keys are read by
+ * main-prim only when its hand-over trials hear the caretaker; stage.handover by main-prim
+ * only. */
+static void test_handover_keys(void) {
+  stConfig c;
+  char err[512] = "";
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(c.stage_handover, 0);
+  c.stage_handover_rollin_steps = 100;
+  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "stage.handover_rollin_steps");
+  ST_ASSERT_CONTAINS(err, "expected stage.handover = true");
+  c.stage_handover = 1;
+  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  st_config_default(&c);
+  c.stage_handover_fallback = 1;
+  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "stage.handover_fallback");
+
+  st_config_default(&c);
+  c.caretaker_grasp_touches = 4;
+  CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "caretaker.grasp_touches");
+  c.stage_handover = 1;
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
+  CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_SIMPLE_PRIM, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "stage.handover");
+}
+
+void st_suite_handover(void) {
+  ST_ADD_SUITE("handover");
+  ST_ADD_TEST(test_handover_specs);
+  ST_ADD_TEST(test_handover_rollin);
+  ST_ADD_TEST(test_handover_fallback);
+  ST_ADD_TEST(test_handover_fitness);
+  ST_ADD_TEST(test_handover_keys);
+  ST_ADD_TEST(test_chain_fitness);
+}
