@@ -2,7 +2,8 @@
 """Checks of a trial page (./apps/replay --html) for tests/check_html.sh; standard library only.
 
     html_page.py static PAGE THREE_DIR       self-contained: nothing it loads, three.js inlined unchanged
-    html_page.py report DOM TRACE [STEP]     what the page's script read (--dump-dom) equals the trace
+    html_page.py report DOM TRACE [STEP]     what the page's script read (--dump-dom) equals the trace,
+                                             the ball drawn at the trace's object at the step shown
     html_page.py pixels PNG DOM MIN_BALL     the screenshot shows the robot and the ball where the camera puts them
     html_page.py netlog NETLOG               the page requested nothing (Chromium's --log-net-log)
 
@@ -116,9 +117,16 @@ def report(dom, trace, step=None):
     for k, v in want.items():
         if r.get(k) != v:
             die(f"{k}: the page read '{r.get(k, '')[:80]}', the trace has '{v[:80]}'")
-    if step is not None and r.get("data-step") != step:
-        die(f"shows step {r.get('data-step')} (expected {step})")
-    print(f"html_page: the page read {len(rows)} steps, their words and labels, as the trace")
+    if step is not None:
+        if r.get("data-step") != step:
+            die(f"shows step {r.get('data-step')} (expected {step})")
+        # the ball drawn where the trace has the object (the data's 0.1 mm)
+        ball = [float(v) for v in r.get("data-ballxyz", "nan,nan,nan").split(",")]
+        obj = [float(rows[int(step)][c]) for c in ("obj_x", "obj_y", "obj_z")]
+        if not max(abs(a - b) for a, b in zip(ball, obj)) <= 1.5e-4:
+            die(f"the ball drawn at {ball}, the trace's object at step {step}: {obj}")
+    print(f"html_page: the page read {len(rows)} steps, their words and labels, as the trace"
+          + (f"; the ball drawn at the trace's object of step {step}" if step is not None else ""))
 
 
 def png(path):
