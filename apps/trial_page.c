@@ -33,7 +33,7 @@ static const unsigned char TEMPLATE[] = {
 typedef struct stepRec {
   int heard, word, label, source, event, touching, lifted;
   int touch; /* bit i: touch sensor i */
-  long d_r, d_g, S, P;
+  long d_r, d_g, d_m, S, P;
   long ling[ST_NET_NLING];
 } stepRec;
 
@@ -229,6 +229,7 @@ void trial_page_step(trialPage *pg, const stTraceStep *s, stNetArch arch) {
   for (int i = 0; i < ST_NTOUCH; i++) r->touch |= s->world->contacts.touch[i] ? 1 << i : 0;
   r->d_r = fixed(pg, s->q->d_r, POS_SCALE);
   r->d_g = fixed(pg, s->q->d_g, POS_SCALE);
+  r->d_m = fixed(pg, s->q->d_m, POS_SCALE);
   r->S = fixed(pg, s->S, QUAT_SCALE);
   r->P = fixed(pg, s->P, QUAT_SCALE);
   /* the linguistic cluster, as the trace's lo_* (type A) and hl_* (type B) columns */
@@ -304,6 +305,7 @@ static void data_json(sbuf *b, const trialPage *pg, const trialPageSummary *sum)
   COLUMN(b, pg, "lifted", lifted);
   COLUMN(b, pg, "d_r", d_r);
   COLUMN(b, pg, "d_g", d_g);
+  COLUMN(b, pg, "d_m", d_m);
   COLUMN(b, pg, "S", S);
   COLUMN(b, pg, "P", P);
   sb_printf(b, ",\"lingvals\":[");

@@ -41,10 +41,11 @@ grep -qx "trial 8 main-prim grasp k=0 success=1 steps=80/80 end=full .*" "$tmp/g
 "${REPLAY[@]}" --exact --out "$tmp/e2.csv" --html "$tmp/e.html" > /dev/null 2>&1
 cmp -s "$tmp/e1.csv" "$tmp/e2.csv" && ok "the trace is unchanged by --html" || ko "trace changed by --html"
 # the 240-step integrated trials: the integration test's (caretaker words) and an ST-CT
-# individual's (type A: self-talk labels and linguistic outputs)
+# individual's talking to itself (type A: self-talk labels and linguistic outputs)
 page integration "$APPDIR/replay" "$RUN/population.genome" data/evolved/integration_test/config.ini \
   --posteval integration --trial 0
-page stct "$APPDIR/replay" data/evolved/int_stct_s1/population.genome data/evolved/int_stct_s1/config.ini --trial 1
+page stct "$APPDIR/replay" data/evolved/int_stct_s1/population.genome data/evolved/int_stct_s1/config.ini \
+  --trial 1 --generation 99
 for n in integration stct; do
   [ "$(($(wc -l < "$tmp/$n.csv") - 1))" = 240 ] && ok "$n: 240 steps" || ko "$n: steps" "$(wc -l < "$tmp/$n.csv")"
 done
