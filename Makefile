@@ -75,7 +75,8 @@ FULL_SO := $(BUILD)/libselftalk.so
 APP_SRC := $(wildcard apps/*.c)
 APP_COMMON := apps/app_common.c
 APP_MPI := apps/evolve_mpi.c
-APP_MAINS := $(filter-out $(APP_COMMON) $(APP_MPI),$(APP_SRC))
+APP_PAGE := apps/trial_page.c
+APP_MAINS := $(filter-out $(APP_COMMON) $(APP_MPI) $(APP_PAGE),$(APP_SRC))
 APPS := $(APP_MAINS:apps/%.c=$(APPDIR)/%)
 # diagnostics built from tools/*.c (not part of the protocol; see each file's header)
 TOOLS := $(patsubst tools/%.c,$(BUILD)/%,$(wildcard tools/*.c))
@@ -87,7 +88,7 @@ HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
   libassimp-dev libtinyxml-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind \
-  libopenmpi-dev openmpi-bin
+  libopenmpi-dev openmpi-bin libjs-three chromium
 # Debian's interpreter, which python3-matplotlib serves (another python3 may come first in PATH)
 PYTHON := /usr/bin/python3
 RUN_CONFIG := configs/simple_prim.cfg
@@ -145,6 +146,17 @@ $(APPDIR)/evolve: apps/evolve.c $(APP_MPI) apps/evolve_mpi.h $(APP_COMMON) apps/
 	@mkdir -p $(APPDIR)
 	$(EVOLVE_CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(APP_MPI) $(APP_COMMON) $(FULL_A) \
 	  $(LIBS_SIM) $(LIBS_CORE)
+
+# replay: with the trial page writer (--html) and its template, tools/trial_page.html, compiled in
+# as bytes (od is in coreutils), so the installed app needs no file of its own
+$(APPDIR)/replay: apps/replay.c $(APP_PAGE) apps/trial_page.h $(BUILD)/trial_page.inc \
+  $(APP_COMMON) apps/app_common.h $(FULL_A) $(HEADERS)
+	@mkdir -p $(APPDIR)
+	$(CC) $(CPPFLAGS_ALL) -I$(BUILD) $(CFLAGS_ALL) -o $@ $< $(APP_PAGE) $(APP_COMMON) $(FULL_A) \
+	  $(LIBS_SIM) $(LIBS_CORE)
+
+$(BUILD)/trial_page.inc: tools/trial_page.html | $(BUILD)/obj
+	od -An -v -tx1 $< | sed 's/\([0-9a-f][0-9a-f]\)/0x\1,/g' > $@.tmp && mv $@.tmp $@
 
 $(BUILD)/evolve-mpi.stamp: FORCE | $(BUILD)/obj
 	@echo 'mpi=$(HAVE_MPI)' | cmp -s - $@ || echo 'mpi=$(HAVE_MPI)' > $@

@@ -30,17 +30,23 @@
  * step,kind,owner,type,sx,sy,sz,px,py,pz,r00..r22 (docs/PROTOCOL.md, "Robot pictures"). The
  * steps: --at LIST (step numbers and "last", the trial's last step, comma-separated) and/or
  * --shapes-every N (steps 0, N, 2N, ... and the last); every step without either.
+ * --html FILE writes one self-contained page that plays the trial in 3D beside its trace (the
+ * shapes of every step, the words, the linguistic outputs, touch, d_r, d_g, lifted, S, P) and
+ * its summary, three.js inlined from --three DIR, $SELFTALK_THREE_DIR or Debian's libjs-three
+ * (trial_page.h; docs/PROTOCOL.md, "Trial pages").
  *
  * The trace has one row per step: joints, palm, object, target, touch, focus, the linguistic
  * inputs, S, P, events, the fitness quantities, then the caretaker's word given at the step
  * (-1 none; in primitive trials the trial's word), the self-talk label produced at the step (a
  * type A network; -1 otherwise), the four linguistic outputs (type A) and the four
  * hidden-linguistic values (type B), empty where the network has none. */
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app_common.h"
+#include "trial_page.h"
 #include "selftalk/integrated.h"
 #include "selftalk/posteval.h"
 #include "selftalk/trial.h"
@@ -103,6 +109,9 @@ typedef struct traceCtx {
   stNetArch arch;
   int digits; /* significant digits of the trace's reals: 9, or 17 with --exact */
   shapesOut *shapes; /* NULL without --shapes */
+  trialPage *page;   /* NULL without --html */
+  trialPageSummary sum; /* the trial's summary for the page (title and line below) */
+  char title[1024], line[2048];
 } traceCtx;
 
 /* --at LIST: step numbers and "last", comma-separated */
@@ -240,12 +249,28 @@ static void trace_row(const traceCtx *c, const stTraceStep *s) {
 static void on_step(void *ctx, const stTraceStep *s) {
   const traceCtx *c = ctx;
   if (c->shapes) shapes_step(c->shapes, s->world, s->step);
+  if (c->page) trial_page_step(c->page, s, c->arch);
   if (c->f) trace_row(c, s);
 }
 
 static const char *const ENDS[] = {"full", "success", "failure", "quiet"};
 
-/* a primitive trial and its share of F_p (the primitive's N_p spans its four trials); traced
+/* the page's title: what main put there (the genotype), then what the trial is */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static void page_summary(traceCtx *c, const char *fmt, ...) {
+  const size_t n = strlen(c->title);
+  if (n + 2 >= sizeof c->title) return;
+  strcpy(c->title + n, ": ");
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(c->title + n + 2, sizeof c->title - n - 2, fmt, ap);
+  va_end(ap);
+}
+
+/* a primitive trial and its share of F_p (the primitive's N_p spans its trials: four, eight
+ * with main-prim's hand-over trials); traced
  * into trace->f when not NULL */
 static void replay_primitive(const stProtocol *p, stStage stage, int generation, int index,
                              int trial, const stNetParams *np, const stForce *force, int nforce,
@@ -260,7 +285,7 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
   stTrialResult r;
   char err[1024];
   const uint64_t key = st_trial_seed_key(p, generation, index, trial);
-  const stTraceFn fn = trace->f || trace->shapes ? on_step : NULL;
+  const stTraceFn fn = trace->f || trace->shapes || trace->page ? on_step : NULL;
   if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, fn, trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
@@ -271,15 +296,23 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
     if (o.primitive == t.primitive) n_p += o.steps;
   }
   if (t.handover)
-    fprintf(stderr, "replay: hand-over trial: %s\n", r.handover_step >= 0 ? "handed over (below)"
-            : "the roll-in did not hand over: the fixed-posture fallback ran (the trace holds both)");
+    fprintf(stderr, "replay: hand-over trial: %s\n",
+            r.handover_step >= 0           ? "handed over at the step below"
+            : p->cfg.stage_handover_fallback ? "no hand-over: the fixed-posture fallback ran (the "
+                                               "trace holds both)"
+                                             : "no hand-over: the trial scores nothing");
   double share = (r.success ? p->fitness.bonus : 0.0) + p->fitness.scale / (double)n_p * (r.sum_s - r.sum_p);
   char ho[48] = "";
   if (t.handover) snprintf(ho, sizeof ho, " handover_step=%d", r.handover_step);
-  printf("trial %d %s %s k=%d success=%d steps=%ld/%d end=%s first_success_step=%d sum_S=%.6f "
-         "sum_P=%.6f F_contribution=%.6f%s\n",
-         trial, st_stage_name(stage), st_primitive_name(t.primitive), t.k, r.success, r.steps_run,
-         t.steps, ENDS[r.end], r.success_step, r.sum_s, r.sum_p, share, ho);
+  snprintf(trace->line, sizeof trace->line, "trial %d %s %s k=%d success=%d steps=%ld/%d end=%s "
+           "first_success_step=%d sum_S=%.6f sum_P=%.6f F_contribution=%.6f%s", trial,
+           st_stage_name(stage), st_primitive_name(t.primitive), t.k, r.success, r.steps_run,
+           t.steps, ENDS[r.end], r.success_step, r.sum_s, r.sum_p, share, ho);
+  printf("%s\n", trace->line);
+  page_summary(trace, "%s trial %d (%s, posture %d)", st_stage_name(stage), trial,
+               st_primitive_name(t.primitive), t.k);
+  trace->sum = (trialPageSummary){trace->title, trace->line, r.success, ENDS[r.end], 1,
+                                  r.success ? p->fitness.bonus : 0.0, r.steps_run, t.steps};
 }
 
 /* an integrated trial: what it heard, how it ended, its bonus and points (eq. 2.14) and, for a
@@ -295,21 +328,29 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
   stIntTrialResult r;
   stPredScore pred;
   char err[1024];
-  const stTraceFn fn = trace->f || trace->shapes ? on_step : NULL;
+  const stTraceFn fn = trace->f || trace->shapes || trace->page ? on_step : NULL;
   if (st_int_trial_run(p, &def, &ws, generation, index, trial, np, &plan, &r, &pred, fn, trace,
                        err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
-  printf("trial %d integrated k=%d words=%s fitness=%s success=%d steps=%ld/%ld end=%s "
-         "reached_step=%d sum_S=%.17g sum_P=%.17g focus_bonus=%d move_bonus=%d bonus=%.17g "
-         "points=%.17g", trial, trial % ST_NPOSTURE, st_word_source_name(plan.words),
-         st_int_fitness_name(plan.fitness), r.success, r.steps_run, r.steps, ENDS[r.end],
-         r.reached_step, r.sum_s, r.sum_p, r.focus_bonus, r.success,
-         st_int_trial_bonus(&r, p->fitness.bonus, plan.bonus_factor), st_int_trial_points(&r));
-  if (plan.fitness == ST_FIT_PREDICTION)
-    printf(" reached=%d F_step=%.17g F_switch=%.17g B_pred=%.17g", r.reached_step >= 0,
-           pred.f_step, pred.f_switch, pred.b_pred);
-  printf("\n");
+  const double bonus = st_int_trial_bonus(&r, p->fitness.bonus, plan.bonus_factor);
+  char *ln = trace->line;
+  const size_t lz = sizeof trace->line;
+  const int n = snprintf(ln, lz, "trial %d integrated k=%d words=%s fitness=%s success=%d "
+                         "steps=%ld/%ld end=%s reached_step=%d sum_S=%.17g sum_P=%.17g "
+                         "focus_bonus=%d move_bonus=%d bonus=%.17g points=%.17g", trial,
+                         trial % ST_NPOSTURE, st_word_source_name(plan.words),
+                         st_int_fitness_name(plan.fitness), r.success, r.steps_run, r.steps,
+                         ENDS[r.end], r.reached_step, r.sum_s, r.sum_p, r.focus_bonus, r.success,
+                         bonus, st_int_trial_points(&r));
+  if (plan.fitness == ST_FIT_PREDICTION && n > 0 && (size_t)n < lz)
+    snprintf(ln + n, lz - (size_t)n, " reached=%d F_step=%.17g F_switch=%.17g B_pred=%.17g",
+             r.reached_step >= 0, pred.f_step, pred.f_switch, pred.b_pred);
+  printf("%s\n", ln);
+  page_summary(trace, "integrated trial %d (posture %d, words: %s)", trial, trial % ST_NPOSTURE,
+               st_word_source_name(plan.words));
+  trace->sum = (trialPageSummary){trace->title, ln, r.success, ENDS[r.end], 1, bonus,
+                                  r.steps_run, r.steps};
 }
 
 /* trial K of a post-evaluation (posteval's numbering and streams) */
@@ -331,14 +372,21 @@ static void replay_posteval(const stProtocol *p, stPostTest test, int caretaker,
   stNetController nc;
   const stController ctl = st_net_controller(&nc, np, NULL, 0);
   stPostResult r;
-  const stTraceFn fn = trace->f || trace->shapes ? on_step : NULL;
+  const stTraceFn fn = trace->f || trace->shapes || trace->page ? on_step : NULL;
   if (st_post_run_trial(p, &idef, &ws, &t, &ctl, words, &r, fn, trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
-  printf("trial %d %s type=%d cell=%d posture=%d repetition=%d words=%s heard=%s success=%d "
-         "reached_step=%d steps=%d/%d end=%s open_jumped=%d\n", trial, st_post_test_name(test),
-         t.type, t.cell, t.posture, t.repetition, st_word_source_name(words), r.heard, r.success,
-         r.reached_step, r.steps_run, t.steps, ENDS[r.end], r.open_jumped);
+  snprintf(trace->line, sizeof trace->line, "trial %d %s type=%d cell=%d posture=%d "
+           "repetition=%d words=%s heard=%s success=%d reached_step=%d steps=%d/%d end=%s "
+           "open_jumped=%d", trial, st_post_test_name(test), t.type, t.cell, t.posture,
+           t.repetition, st_word_source_name(words), r.heard, r.success, r.reached_step,
+           r.steps_run, t.steps, ENDS[r.end], r.open_jumped);
+  printf("%s\n", trace->line);
+  page_summary(trace, "%s test trial %d (posture %d, words: %s)", st_post_test_name(test), trial,
+               t.posture, st_word_source_name(words));
+  /* a post-evaluation trial succeeds or not: it earns no bonus */
+  trace->sum = (trialPageSummary){trace->title, trace->line, r.success, ENDS[r.end], 0, 0.0,
+                                  r.steps_run, t.steps};
 }
 
 /* without --index: see the header comment */
@@ -357,7 +405,8 @@ static int pick_index(const stGenomeSet *set, const char *genome, int generation
 int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
-  const char *genome = NULL, *out = NULL, *stage_name = NULL, *post_name = NULL;
+  const char *genome = NULL, *out = NULL, *stage_name = NULL, *post_name = NULL, *html = NULL,
+             *three = NULL;
   int caretaker = 0, trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0, digits = 9;
   stForce force[MAX_FORCE];
   shapesOut so;
@@ -378,6 +427,8 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--shapes") && i + 1 < argc) so.path = argv[++i];
     else if (!strcmp(a, "--at") && i + 1 < argc) at_arg(&so, argv[++i]);
     else if (!strcmp(a, "--shapes-every") && i + 1 < argc) so.every = app_int_arg(prog, a, argv[++i], 1);
+    else if (!strcmp(a, "--html") && i + 1 < argc) html = argv[++i];
+    else if (!strcmp(a, "--three") && i + 1 < argc) three = argv[++i];
     else if (!strcmp(a, "--exact")) digits = 17;
     else if (!strcmp(a, "--generation") && i + 1 < argc) generation = app_int_arg(prog, a, argv[++i], 0);
     else if (!strcmp(a, "--index") && i + 1 < argc) {
@@ -393,9 +444,10 @@ int main(int argc, char **argv) {
     app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--exact] "
                   "[--stage simple|main] [--generation G] [--index I] [--force OUT=VALUE[@STEP]]... "
                   "[--posteval integration|robustness|generalisation [--caretaker]] "
-                  "[--shapes FILE [--at STEP,...|last] [--shapes-every N]]");
+                  "[--shapes FILE [--at STEP,...|last] [--shapes-every N]] [--html FILE [--three DIR]]");
   if (!so.path && (so.nat || so.last || so.every))
     app_die(prog, "--at and --shapes-every choose the steps of --shapes FILE: give --shapes");
+  if (three && !html) app_die(prog, "--three DIR is where --html FILE finds three.js: give --html");
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
   const int integrated = cfg.stage_stages == ST_STAGES_INTEGRATED;
@@ -439,15 +491,22 @@ int main(int argc, char **argv) {
   stNetParams np;
   if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);
-  traceCtx trace = {NULL, arch, digits, NULL};
+  static traceCtx trace; /* static: its summary buffers are large */
+  trace.arch = arch;
+  trace.digits = digits;
   if (out && !(trace.f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
   if (trace.f) header(trace.f);
   if (so.path) trace.shapes = shapes_open(&so, p, digits);
+  if (html) {
+    trace.page = trial_page_open(prog, html, three, p);
+    snprintf(trace.title, sizeof trace.title, "%s genotype %d", genome, index);
+  }
   if (post >= 0) replay_posteval(p, (stPostTest)post, caretaker, trial, &np, &trace);
   else if (integrated) replay_integrated(p, generation, index, trial, &np, &trace);
   else replay_primitive(p, stage, generation, index, trial, &np, force, nforce, &trace);
   if (trace.f && fclose(trace.f) != 0) app_die(prog, "%s: write error", out);
   if (trace.shapes) shapes_finish(trace.shapes);
+  if (trace.page) trial_page_finish(trace.page, &trace.sum);
   st_protocol_destroy(p);
   return 0;
 }
