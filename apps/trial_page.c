@@ -217,7 +217,8 @@ void trial_page_step(trialPage *pg, const stTraceStep *s, stNetArch arch) {
     for (int k = 0; k < 4; k++) pose[3 + k] = fixed(pg, q[k], QUAT_SCALE);
   }
   stepRec *r = &pg->rec[pg->steps++];
-  const int given = s->source == ST_WORDS_CARETAKER || s->source == ST_WORDS_FIXED;
+  const int given = s->source == ST_WORDS_CARETAKER || s->source == ST_WORDS_FIXED ||
+                    s->source == ST_WORDS_HANDOVER;
   r->heard = s->word;
   r->word = given ? s->word : -1; /* as the trace's caretaker_word */
   r->label = s->label;
@@ -267,8 +268,6 @@ static void pose_json(sbuf *b, const trialPage *pg, int i) {
   sb_printf(b, "]");
 }
 
-static const char *const SOURCES[] = {"none", "fixed", "caretaker", "selftalk"};
-
 static void data_json(sbuf *b, const trialPage *pg, const trialPageSummary *sum) {
   sb_printf(b, "{\"format\":\"selftalk-trial-page 1\",\"title\":");
   sb_json(b, sum->title);
@@ -276,7 +275,7 @@ static void data_json(sbuf *b, const trialPage *pg, const trialPageSummary *sum)
             "\"words\":[", pg->dt, pg->steps, 1 / POS_SCALE, 1 / QUAT_SCALE, 1 / VAL_SCALE);
   for (int w = 0; w < ST_NPRIM; w++) sb_printf(b, "%s\"%s\"", w ? "," : "", st_primitive_name(w));
   sb_printf(b, "],\"sources\":[");
-  for (int k = 0; k < ST_WORDS_COUNT; k++) sb_printf(b, "%s\"%s\"", k ? "," : "", SOURCES[k]);
+  for (int k = 0; k < ST_WORDS_COUNT; k++) sb_printf(b, "%s\"%s\"", k ? "," : "", st_word_source_name((stWordSource)k));
   sb_printf(b, "],\"touch_links\":");
   sb_json(b, pg->touch_links);
   sb_printf(b, ",\"summary\":{\"line\":");
