@@ -209,7 +209,7 @@ static void header(FILE *f) {
 
 /* the words and the linguistic cluster: type A's outputs, type B's hidden-linguistic values */
 static void language(FILE *f, stNetArch arch, const stTraceStep *s) {
-  const int given = s->source == ST_WORDS_CARETAKER || s->source == ST_WORDS_FIXED;
+  const int given = st_word_source_given(s->source);
   fprintf(f, ",%d,%d", given ? s->word : -1, s->label);
   for (int k = 0; k < 2; k++) {
     const int show = s->nout >= ST_NET_MAX_OUT && arch == (k ? ST_ARCH_B : ST_ARCH_A);

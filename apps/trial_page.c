@@ -217,8 +217,7 @@ void trial_page_step(trialPage *pg, const stTraceStep *s, stNetArch arch) {
     for (int k = 0; k < 4; k++) pose[3 + k] = fixed(pg, q[k], QUAT_SCALE);
   }
   stepRec *r = &pg->rec[pg->steps++];
-  const int given = s->source == ST_WORDS_CARETAKER || s->source == ST_WORDS_FIXED ||
-                    s->source == ST_WORDS_HANDOVER;
+  const int given = st_word_source_given(s->source);
   r->heard = s->word;
   r->word = given ? s->word : -1; /* as the trace's caretaker_word */
   r->label = s->label;

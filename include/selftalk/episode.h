@@ -81,6 +81,10 @@ typedef enum stWordSource {
 /* "none", "fixed", "caretaker", "selftalk", "handover". */
 const char *st_word_source_name(stWordSource source);
 
+/* 1 for the sources whose words someone else gives (fixed, caretaker, hand-over), 0 for none
+ * and self talk. */
+int st_word_source_given(stWordSource source);
+
 typedef struct stWords {
   stWordSource source;
   int word;         /* ST_WORDS_FIXED, ST_WORDS_HANDOVER: the primitive named (ST_PRIM_*) */

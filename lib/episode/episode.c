@@ -65,6 +65,10 @@ const char *st_word_source_name(stWordSource s) {
   return (int)s >= 0 && s < ST_WORDS_COUNT ? names[s] : "?";
 }
 
+int st_word_source_given(stWordSource s) {
+  return s == ST_WORDS_FIXED || s == ST_WORDS_CARETAKER || s == ST_WORDS_HANDOVER;
+}
+
 int st_episode_label(const double *ling4) {
   int best = 0;
   for (int m = 1; m < ST_NET_NLING; m++)
