@@ -482,33 +482,19 @@ static int check_integrated(const stConfig *c, char *msg, size_t n) {
 
 static int is_default(const stConfig *c, const stConfig *d, const stConfigKey *k);
 
-/* the postures.vary_* keys shape the drawn starts: changed without postures.vary_starts they
+/* keys section.prefix* that shape what a switch key turns on: changed while it is off they
  * would do nothing; returns the key blamed or -1 */
-static int check_vary(const stConfig *c, char *msg, size_t n) {
-  if (c->postures_vary_starts) return -1;
+static int check_switched(const stConfig *c, int on, const char *section, const char *prefix,
+                          const char *what, const char *switch_key, char *msg, size_t n) {
+  if (on) return -1;
   stConfig d;
   st_config_default(&d);
   for (int i = 0; i < NKEYS; i++) {
     const stConfigKey *k = &g_keys[i];
-    if (strcmp(k->section, "postures") || strncmp(k->name, "vary_", 5) || is_default(c, &d, k)) continue;
-    snprintf(msg, n, "it shapes the drawn starts, which postures.vary_starts = false turns off "
-             "(expected postures.vary_starts = true, or the key left out)");
-    return i;
-  }
-  return -1;
-}
-
-/* the stage.handover_* keys shape the hand-over trials: changed without stage.handover they
- * would do nothing; returns the key blamed or -1 */
-static int check_handover(const stConfig *c, char *msg, size_t n) {
-  if (c->stage_handover) return -1;
-  stConfig d;
-  st_config_default(&d);
-  for (int i = 0; i < NKEYS; i++) {
-    const stConfigKey *k = &g_keys[i];
-    if (strcmp(k->section, "stage") || strncmp(k->name, "handover_", 9) || is_default(c, &d, k)) continue;
-    snprintf(msg, n, "it shapes the hand-over trials, which stage.handover = false turns off "
-             "(expected stage.handover = true, or the key left out)");
+    if (strcmp(k->section, section) || strncmp(k->name, prefix, strlen(prefix)) || is_default(c, &d, k))
+      continue;
+    snprintf(msg, n, "it shapes %s, which %s = false turns off (expected %s = true, or the key "
+             "left out)", what, switch_key, switch_key);
     return i;
   }
   return -1;
@@ -518,8 +504,11 @@ static int check_handover(const stConfig *c, char *msg, size_t n) {
 static int check_rules(const stConfig *c, char *msg, size_t n) {
   int k = check_integrated(c, msg, n);
   if (k >= 0) return k;
-  if ((k = check_vary(c, msg, n)) >= 0) return k;
-  if ((k = check_handover(c, msg, n)) >= 0) return k;
+  if ((k = check_switched(c, c->postures_vary_starts, "postures", "vary_", "the drawn starts",
+                          "postures.vary_starts", msg, n)) >= 0 ||
+      (k = check_switched(c, c->stage_handover, "stage", "handover_", "the hand-over trials",
+                          "stage.handover", msg, n)) >= 0)
+    return k;
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
              "reach,open,grasp,move)", c->stage_primitives);

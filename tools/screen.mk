@@ -1,0 +1,67 @@
+# Screening a chaining candidate (issue 23; docs/PROTOCOL.md, "Screening chaining candidates"):
+# main-prim continued from a committed final population with the candidate's keys for GENS
+# generations, then the integration test on the top 10 of the result, with the caretaker and
+# with no words (SPEC 12), then one table row. The control is the candidate `control`: the same
+# population, the same generations, the default keys. Every candidate runs its GENS generations
+# (ga.success_genotypes = ga.population: no early completion), so rows compare like for like.
+# A stopped screen continues where it stopped (evolve --resume, posteval --resume).
+#
+#   make -f tools/screen.mk [CAND=control] [POP=prims_s4] [GENS=20] [SEED=1] [OUT=runs/screen] [THREADS=0]
+#   make -f tools/screen.mk list          the candidates and their keys
+#   make -f tools/screen.mk report        the table rows of every screen under OUT
+#
+# POP names a committed primitive run (data/evolved/POP/population.genome) or a population file.
+
+CAND ?= control
+POP ?= prims_s4
+GENS ?= 20
+SEED ?= 1
+OUT ?= runs/screen
+THREADS ?= 0
+PYTHON ?= /usr/bin/python3
+
+# the candidates: config keys on configs/main_prim.cfg (one line each; add a row to add one)
+KEYS_control :=
+KEYS_grasp_gap := --set postures.grasp_gap=0.06
+KEYS_ik := --set postures.ik_torso_pitch=20 --set postures.ik_wrist_prosup=0 --set postures.ik_wrist_pitch=-45
+KEYS_vary := --set postures.vary_starts=true
+KEYS_handover := --set stage.handover=true
+KEYS_handover_fallback := --set stage.handover=true --set stage.handover_fallback=true
+KEYS_chain := --set stage.chain_trials=8
+KEYS_handover_chain := --set stage.handover=true --set stage.chain_trials=8
+CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain
+
+ifeq ($(filter $(CAND),$(CANDIDATES)),)
+$(error CAND=$(CAND): expected one of $(CANDIDATES))
+endif
+
+POPFILE := $(if $(wildcard data/evolved/$(POP)/population.genome),data/evolved/$(POP)/population.genome,$(POP))
+DIR := $(OUT)/$(CAND)-$(notdir $(basename $(POP:%/population.genome=%)))-s$(SEED)
+THREADS_ARG := $(if $(filter-out 0,$(THREADS)),--threads $(THREADS))
+SHELL := /bin/bash
+
+.PHONY: screen list report
+.DELETE_ON_ERROR:
+
+screen: $(DIR)/integration/summary.csv $(DIR)/integration-nowords/summary.csv
+	@$(PYTHON) tools/screen_report.py $(DIR)
+
+list:
+	@$(foreach c,$(CANDIDATES),echo "$(c): $(or $(KEYS_$(c)),(the default keys))";)
+
+report:
+	@$(PYTHON) tools/screen_report.py $(sort $(dir $(wildcard $(OUT)/*/integration/summary.csv)))
+
+$(DIR)/population.genome:
+	mkdir -p $(DIR) && set -o pipefail && ./apps/evolve configs/main_prim.cfg --seed $(SEED) \
+	  --generations $(GENS) --out $(DIR) --resume $(THREADS_ARG) \
+	  --set stage.init_population=$(POPFILE) --set ga.success_genotypes=100 $(KEYS_$(CAND)) \
+	  2>&1 | tee -a $(DIR)/progress.log
+
+$(DIR)/integration/summary.csv: $(DIR)/population.genome
+	./apps/posteval integration configs/prims.cfg $(DIR)/population.genome --out $(DIR)/integration \
+	  --resume $(THREADS_ARG)
+
+$(DIR)/integration-nowords/summary.csv: $(DIR)/population.genome
+	./apps/posteval integration configs/prims.cfg $(DIR)/population.genome --no-words \
+	  --out $(DIR)/integration-nowords --resume $(THREADS_ARG)
