@@ -143,5 +143,36 @@ if awk '/^basin held=/ { split($2, h, "="); split($3, n, "="); held = h[2]; tota
 else
   bad "grasp_probe --basin: $(tail -1 "$t/basin2")"
 fi
+# screen_report.py: a hand-made screen whose row is known: 3 generations at 40 s (elapsed
+# 0:02:00 after generation 2), the last row's 15 fixed and 2 hand-over trials solved, three
+# genotypes with 3, 0 and 0 successes of 4 trials (median 0, one genotype >= 1), heard rogm 3,
+# ro 9, open jumped in 1; with no words 0 of 12
+s="$t/screen/handover-pop-s1"
+mkdir -p "$s/integration" "$s/integration-nowords"
+{
+  printf 'generation,best,mean,worst'
+  for k in $(seq 0 15); do printf ',best_t%d' "$k"; done
+  printf ',best_handovers'; for k in $(seq 0 11); do printf ',best_h%d' "$k"; done; echo
+  for g in 0 1 2; do
+    printf '%d,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,0,9,1,1,0,0,0,0,0,0,0,0,0,0\n' "$g"
+  done
+} > "$s/fitness.csv"
+printf 'gen    2 main-prim best 1 | 0.03 gen/s elapsed 0:02:00 left <= 0:00:00\n' > "$s/progress.log"
+for d in integration integration-nowords; do
+  w=$([ $d = integration ] && echo 3 || echo 0)
+  { echo "test,run,individual,successes,trials"; echo "integration,0,0,$w,4"
+    echo "integration,0,1,0,4"; echo "integration,0,2,0,4"; } > "$s/$d/summary.csv"
+  { echo "heard,open_jumped,success"
+    for h in rogm rogm rogm ro ro ro ro ro ro ro ro ro; do echo "$h,0,0"; done; } > "$s/$d/trials.csv"
+done
+sed -i '2s/,0,0$/,1,0/' "$s/integration/trials.csv"
+out=$(python3 tools/screen_report.py "$s" 2>&1)
+if grep -qF '| `handover-pop-s1` | 3 | 40 s | 15/16, hand-over 2/12 | 3 of 12 | 0 | 1 of 3 | `ro` 9, `rogm` 3 | 1 | 0 of 12 |' <<<"$out"; then
+  ok "screen_report: the row of a hand-made screen"
+else
+  bad "screen_report: $out"
+fi
+python3 tools/screen_report.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
+[ $rc = 1 ] && grep -q "screen_report: $t/nope/fitness.csv" "$t/err" && ok "screen_report: a missing screen named" || bad "screen_report missing rc=$rc $(cat "$t/err")"
 echo "check_tools: $pass passed, $fail failed"
 [ "$fail" = 0 ]
