@@ -9,7 +9,7 @@ Appendix A.2 videos).
         > replay.txt
     /usr/bin/python3 tools/trial_video.py shapes.csv trace.csv [--summary replay.txt] \\
         [--stride N] [--fps F] [--size WxH] [--dpi D] [--view ELEV,AZIM] [--colors N] \\
-        [--hold S] [--title TEXT] [--dt 0.05] -o trial.gif|trial.mp4
+        [--hold S] [--title TEXT] [--dt 0.05] [--list] -o trial.gif|trial.mp4
 
 tools/trial_video.sh does both in one command. Frame i shows step first + i x --stride of the
 trace, and the trace's last step closes the video whatever the stride: ceil(n / stride) frames,
@@ -27,7 +27,7 @@ GIF (Pillow: Debian's python3-pil): every frame quantised to one palette of --co
 frames after the first store only the rectangle that changed. Its delays are whole hundredths
 of a second (--fps 15: 0.07 s); the last frame stays --hold seconds (default 1.5). MP4
 (ffmpeg's libx264, yuv420p, even --size): one video frame per frame, at --fps. Default --fps:
-real time, 1 / (dt x stride).
+real time, 1 / (dt x stride). --list prints each frame's step, words and state.
 Written atomically; malformed input is refused with FILE:LINE and exit 1, nothing written.
 """
 import argparse
@@ -176,17 +176,25 @@ def yes(v):
     return "yes" if v else "no"
 
 
+def heard_text(r, source):
+    """the word heard and who gave it"""
+    if r["heard"] < 0:
+        return "-"
+    return f"{word(r['heard'])} ({source if r['given'] else 'self talk: its own word'})"
+
+
+def state_text(r):
+    return (f"lifted {yes(r['lifted'])}   touching {yes(r['touching'])}   "
+            f"success now {yes(r['success_now'] or r['event'] == 'end_success')}")
+
+
 def frame_text(r, last, dt, source, outcome):
     """the lines under the robot: where the trial is, the words, the state"""
     st = r["step"]
-    heard = word(r["heard"])
-    if r["heard"] >= 0:
-        heard += f" ({source if r['given'] else 'self talk: its own word'})"
     lines = [f"step {st:3d} of {last}   t = {(st + 1) * dt:5.2f} s",
-             f"heard: {heard}",
+             f"heard: {heard_text(r, source)}",
              f"said:  {word(r['selftalk_label'])}",
-             f"lifted {yes(r['lifted'])}   touching {yes(r['touching'])}   "
-             f"success now {yes(r['success_now'] or r['event'] == 'end_success')}"]
+             state_text(r)]
     if st == last:
         lines.append(outcome)
     return "\n".join(lines)
@@ -294,6 +302,7 @@ def main():
     ap.add_argument("--hold", type=float, default=1.5, help="GIF: seconds on the last frame (1.5)")
     ap.add_argument("--title", help="the title (default: the shapes file's name)")
     ap.add_argument("--dt", type=float, default=0.05, help="seconds per step (robot.control_dt)")
+    ap.add_argument("--list", action="store_true", help="print each frame's step, words and state")
     a = ap.parse_args()
     fmt, size = check_options(a)
     view = draw_trial.parse_view(a.view)
@@ -308,6 +317,11 @@ def main():
     last = trace[-1]["step"]
     outcome = outcome_of(trace, fields)
     title = a.title if a.title is not None else os.path.basename(a.shapes)
+    if a.list:  # what each frame says, as text (tests/check_video.sh reads it)
+        for i, st in enumerate(steps):
+            r = by_step[st]
+            print(f"{figlib.PROG}: frame {i}: step {st}: heard {heard_text(r, source)}; said "
+                  f"{word(r['selftalk_label'])}; {state_text(r)}")
     rend = Renderer(size, a.dpi, draw_trial.limits(shapes, steps), view, title, caption)
 
     def render(st):

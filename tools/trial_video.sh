@@ -9,7 +9,8 @@
 # which this script sets (e.g. --trial K, --stage main, --generation G, --index I, --posteval
 # TEST [--caretaker], --set section.key=value, --force OUT=VALUE[@STEP]).
 # Video options (tools/trial_video.py's): --stride N, --fps F, --size WxH, --dpi D, --view
-# ELEV,AZIM, --colors N, --hold S, --title TEXT (default: GENOME and the replay's genotype line).
+# ELEV,AZIM, --colors N, --hold S, --list, --title TEXT (default: the genome file and the genotype
+# replay took).
 # --keep DIR also keeps the replay's files there (trace.csv, shapes.csv, replay.txt).
 # Run from the directory replay would run in (a config's relative paths are read from there).
 # APPDIR (apps) and PYTHON (/usr/bin/python3, Debian's, with matplotlib and Pillow) as the tests.
@@ -19,7 +20,7 @@ die() { echo "$prog: $*" >&2; exit 2; }
 here=$(cd "$(dirname "$0")" && pwd)
 APPDIR=${APPDIR:-apps}
 PY=${PYTHON:-/usr/bin/python3}
-[ $# -ge 2 ] || die "usage: $prog GENOME CONFIG [replay options...] -o OUT.gif|OUT.mp4 [--stride N] [--fps F] [--size WxH] [--dpi D] [--view ELEV,AZIM] [--colors N] [--hold S] [--title TEXT] [--keep DIR]"
+[ $# -ge 2 ] || die "usage: $prog GENOME CONFIG [replay options...] -o OUT.gif|OUT.mp4 [--stride N] [--fps F] [--size WxH] [--dpi D] [--view ELEV,AZIM] [--colors N] [--hold S] [--list] [--title TEXT] [--keep DIR]"
 genome=$1 config=$2
 shift 2
 replay=() video=() out="" title="" keep=""
@@ -28,6 +29,7 @@ while [ $# -gt 0 ]; do
     -o|--video) [ $# -ge 2 ] || die "$1 needs a file name"; out=$2; shift 2 ;;
     --stride|--fps|--size|--dpi|--view|--colors|--hold)
       [ $# -ge 2 ] || die "$1 needs a value"; video+=("$1" "$2"); shift 2 ;;
+    --list) video+=("$1"); shift ;;
     --title) [ $# -ge 2 ] || die "$1 needs a value"; title=$2; shift 2 ;;
     --keep) [ $# -ge 2 ] || die "$1 needs a directory"; keep=$2; shift 2 ;;
     --out|--shapes|--at|--shapes-every|--html|--three)
