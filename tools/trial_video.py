@@ -23,11 +23,11 @@ replay's standard output, names where the given words come from and puts the tri
 its outcome (success, end) in the picture; it must have as many steps as the trace.
 
 GIF (Pillow: Debian's python3-pil): every frame quantised to one palette of --colors colours
-(default 32, maximum coverage) taken from the first, middle and last frames, no dithering;
-frames after the first store only the rectangle that changed. Its delays are whole hundredths
-of a second (--fps 15: 0.07 s); the last frame stays --hold seconds (default 1.5). MP4
-(ffmpeg's libx264, yuv420p, even --size): one video frame per frame, at --fps. Default --fps:
-real time, 1 / (dt x stride). --list prints each frame's step, words and state.
+(default 32: 26 by maximum coverage of the first, middle and last frames, and 6 greys), no
+dithering; frames after the first store only the rectangle that changed. Its delays are whole
+hundredths of a second (--fps 15: 0.07 s); the last frame stays --hold seconds (default 1.5).
+MP4 (ffmpeg's libx264, yuv420p, even --size): one video frame per frame, at --fps. Default
+--fps: real time, 1 / (dt x stride). --list prints each frame's step, words and state.
 Written atomically; malformed input is refused with FILE:LINE and exit 1, nothing written.
 """
 import argparse
@@ -47,6 +47,8 @@ MORE = {**{c: "float" for c in LING}, "caretaker_word": "int", "selftalk_label":
         "success_now": "int", "event": "text"}
 EVENTS = {"": None, "end_success": "success", "end_failure": "failure (the object fell)",
           "end_quiet": "the object fell after the table went (quiet)"}
+# the GIF palette's greys (the text, the grid, the edges), besides the colours of the frames
+GREYS = (0, 80, 140, 180, 210, 235)
 # the summary's fields shown under the title (replay's line has the fitness terms too)
 CAPTION_KEYS = ("k", "type", "cell", "posture", "words", "success", "steps", "end", "reached_step")
 
@@ -143,13 +145,14 @@ def check_options(a):
     if fmt not in (".gif", ".mp4"):
         figlib.die(f"{a.out}: unknown video format (expected a name ending in .gif or .mp4)")
     bad = [(f"--stride {a.stride}", a.stride >= 1), (f"--dpi {a.dpi:g}", 20 <= a.dpi <= 600),
-           (f"--colors {a.colors}", 2 <= a.colors <= 256), (f"--hold {a.hold:g}", 0 <= a.hold <= 60),
+           (f"--colors {a.colors}", 8 <= a.colors <= 256),
+           (f"--hold {a.hold:g}", 0 <= a.hold <= 60),
            (f"--dt {a.dt:g}", a.dt > 0 and math.isfinite(a.dt)),
            (f"--fps {a.fps}", a.fps is None or 0.1 <= a.fps <= 100)]
     for what, good in bad:
         if not good:
             figlib.die(f"{what}: out of range (expected --stride >= 1, --dpi 20..600, --colors "
-                       "2..256, --hold 0..60 s, --dt > 0, --fps 0.1..100)")
+                       "8..256, --hold 0..60 s, --dt > 0, --fps 0.1..100)")
     size = parse_size(a.size)
     if fmt == ".mp4":
         if shutil.which("ffmpeg") is None:
@@ -262,8 +265,13 @@ def write_gif(tmp, frames, render, fps, hold, colors):
     strip = Image.new("RGB", (samples[0].width, samples[0].height * len(samples)))
     for k, im in enumerate(samples):
         strip.paste(im, (0, k * im.height))
-    # maximum coverage keeps the small ball's orange, which median cut merges into the table's
-    pal = strip.quantize(colors=colors, method=Image.Quantize.MAXCOVERAGE, dither=Image.Dither.NONE)
+    # maximum coverage keeps the small ball's orange, which median cut merges into the table's;
+    # it leaves out the thin grey lines (the grid, the edges), so greys are added
+    cover = strip.quantize(colors=colors - len(GREYS), method=Image.Quantize.MAXCOVERAGE,
+                           dither=Image.Dither.NONE)
+    pal = Image.new("P", (1, 1))
+    greys = [g for g in GREYS for _ in "rgb"]
+    pal.putpalette(cover.getpalette()[:3 * (colors - len(GREYS))] + greys)
     out = [render(f).quantize(palette=pal, dither=Image.Dither.NONE) for f in frames]
     ms = max(10, round(100 / fps) * 10)  # GIF delays are hundredths of a second
     durations = [ms] * len(out)
@@ -291,7 +299,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("shapes", help="./apps/replay --shapes output (--shapes-every 1)")
     ap.add_argument("trace", help="the same replay's trace (--out)")
-    ap.add_argument("-o", "--out", default="trial.gif", help="the video, .gif or .mp4 (default trial.gif)")
+    ap.add_argument("-o", "--out", default="trial.gif", help="the video: .gif or .mp4 (trial.gif)")
     ap.add_argument("--summary", help="the replay's standard output (its summary line)")
     ap.add_argument("--stride", type=int, default=1, help="a frame every N steps (default 1)")
     ap.add_argument("--fps", type=float, help="frames per second (default real time)")
