@@ -63,7 +63,7 @@ assert ball > 30 and arm > 1000, f"ball {ball} pixels, arm {arm}"
 top = (0, 0, a.width, int(0.75 * a.height))
 assert ImageChops.difference(a.crop(top), b.crop(top)).getbbox(), "no motion"' "$tmp/st.gif" 2> "$tmp/px.err" &&
   ok "GIF: the ball and the arm drawn, and moving" || ko "GIF pictures" "$(tail -1 "$tmp/px.err")"
-[ -z "$(ls "$tmp" | grep '\.tmp$')" ] && ok "no temporary file left" || ko "temporary files" "$(ls "$tmp")"
+[ -z "$(find "$tmp" -maxdepth 1 -name '*.tmp')" ] && ok "no temporary file left" || ko "temporary files" "$(ls "$tmp")"
 
 # ---- a caretaker trial, every step, --fps --------------------------------------------------
 bash "$VIDEO" "${STCT[@]}" --trial 0 --fps 10 --size 200x160 --list --keep "$tmp/ct" \

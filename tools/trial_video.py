@@ -31,6 +31,7 @@ MP4 (ffmpeg's libx264, yuv420p, even --size): one video frame per frame, at --fp
 Written atomically; malformed input is refused with FILE:LINE and exit 1, nothing written.
 """
 import argparse
+import importlib.util
 import math
 import os
 import shutil
@@ -160,12 +161,9 @@ def check_options(a):
                        "ffmpeg), or write a .gif")
         if size[0] % 2 or size[1] % 2:
             figlib.die(f"--size {a.size}: MP4 (yuv420p) needs an even width and height")
-    else:
-        try:
-            import PIL.Image  # noqa: F401
-        except ImportError:
-            figlib.die(f"GIF needs Pillow, which {sys.executable} does not have (Debian: apt-get "
-                       "install python3-pil, then run /usr/bin/python3)")
+    elif importlib.util.find_spec("PIL") is None:
+        figlib.die(f"GIF needs Pillow, which {sys.executable} does not have (Debian: apt-get "
+                   "install python3-pil, then run /usr/bin/python3)")
     return fmt[1:], size
 
 
