@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
-"""Shared by the thesis-figure scripts (tools/fig_*.py): CSV reading that names FILE:LINE and what
-was expected, type-7 quartiles, the conditions' order, and writing PNG and SVG through
-matplotlib (Debian's python3-matplotlib; run the scripts with /usr/bin/python3).
+"""Shared by the thesis-figure scripts (tools/fig_*.py) and the robot's pictures and videos
+(draw_trial.py, trial_video.py): CSV reading that names FILE:LINE and what was expected, replay
+traces, type-7 quartiles, the conditions' order, and writing PNG and SVG through matplotlib
+(Debian's python3-matplotlib; run the scripts with /usr/bin/python3).
 
 Every script reads and checks all of its input before it imports matplotlib, so a malformed
 file is refused quickly and without drawing anything. Errors go to stderr as "PROG: message",

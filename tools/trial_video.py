@@ -46,7 +46,8 @@ figlib.PROG = "trial_video"  # draw_trial's import set its own
 LING = [f"ling_{w}" for w in figlib.WORDS]
 MORE = {**{c: "float" for c in LING}, "caretaker_word": "int", "selftalk_label": "int",
         "success_now": "int", "event": "text"}
-EVENTS = {"": None, "end_success": "success", "end_failure": "failure (the object fell)",
+EVENTS = {"": None, "end_success": "success",
+          "end_failure": "failure (the object fell, or the simulation gave up)",
           "end_quiet": "the object fell after the table went (quiet)"}
 # the GIF palette's greys (the text, the grid, the edges), besides the colours of the frames
 GREYS = (0, 80, 140, 180, 210, 235)
