@@ -88,7 +88,7 @@ HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
   libassimp-dev libtinyxml-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind \
-  libopenmpi-dev openmpi-bin libjs-three chromium
+  libopenmpi-dev openmpi-bin libjs-three chromium python3-pil ffmpeg
 # Debian's interpreter, which python3-matplotlib serves (another python3 may come first in PATH)
 PYTHON := /usr/bin/python3
 RUN_CONFIG := configs/simple_prim.cfg

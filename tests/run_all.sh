@@ -47,6 +47,7 @@ run_part "stats: Mann-Whitney U, quartiles, the thesis's tables" bash tests/chec
 run_part "figures: the thesis's Figs. 3.1, 3.3-3.12 from CSVs" bash tests/check_figures.sh
 run_part "pictures of the robot: replay --shapes, tools/draw_trial.py" bash tests/check_pictures.sh
 run_part "trial pages: replay --html in headless Chromium" bash tests/check_html.sh
+run_part "trial videos: tools/trial_video.sh, GIF and MP4 frames, bad input" bash tests/check_video.sh
 run_part "make replicate: every step, killed and resumed (PRESET=tiny)" bash tests/check_replicate.sh
 run_part "golden results (tests/golden/golden.sha256)" bash tests/check_golden.sh
 if [ "$BUILD" = build ]; then

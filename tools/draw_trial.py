@@ -79,13 +79,10 @@ def read_shapes(path):
     return steps
 
 
-def read_trace(path):
-    """{step: row} of a replay trace"""
+def read_trace(path, more=None):
+    """{step: row} of a replay trace; more: columns beyond TRACE_COLUMNS (figlib.read_csv's)"""
     rows = {}
-    for r in figlib.read_csv(path, TRACE_COLUMNS, "an ./apps/replay trace (--out)"):
-        if r["step"] in rows:
-            figlib.die(f"{path}:{r['_line']}: step {r['step']} again (expected one row per step: "
-                       "one trial's trace)")
+    for r in figlib.read_trace(path, {**TRACE_COLUMNS, **(more or {})}):
         for c in ("touching", "lifted"):
             if r[c] not in (0, 1):
                 figlib.die(f"{path}:{r['_line']}: {c} {r[c]} (expected 0 or 1)")
@@ -242,14 +239,26 @@ def panel_title(st, trace, dt):
             f"touching {r['touching']}  lifted {r['lifted']}")
 
 
-def draw_panel(ax, Poly3DCollection, ticker, shapes, lim, title, view):
+def add_shapes(ax, Poly3DCollection, shapes, lim):
+    """the shapes as one collection of polygons (returned: an animation replaces it)"""
     polys, colours = [], []
     for s in shapes:
         f = faces_of(s, lim)
         polys += f
         colours += [colour_of(s)] * len(f)
     edge = [(0.2, 0.2, 0.25, 0.35 if c[3] > 0.5 else 0.0) for c in colours]
-    ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolors=edge, linewidths=0.3))
+    return ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolors=edge,
+                                                linewidths=0.3))
+
+
+def draw_panel(ax, Poly3DCollection, ticker, shapes, lim, title, view):
+    add_shapes(ax, Poly3DCollection, shapes, lim)
+    set_axes(ax, ticker, lim, view)
+    ax.set_title(title, fontsize=8)
+
+
+def set_axes(ax, ticker, lim, view):
+    """limits, equal scaling, the camera and the axes' labels of a panel"""
     ax.set_xlim(*lim[0])
     ax.set_ylim(*lim[1])
     ax.set_zlim(*lim[2])
@@ -260,7 +269,6 @@ def draw_panel(ax, Poly3DCollection, ticker, shapes, lim, title, view):
         axis.labelpad = -7
         axis.set_major_locator(ticker.MultipleLocator(0.2))
     ax.tick_params(labelsize=6, pad=-3)
-    ax.set_title(title, fontsize=8)
 
 
 def parse_view(v):

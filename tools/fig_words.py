@@ -27,13 +27,7 @@ COLUMNS = {"step": "int", "caretaker_word": "int", "selftalk_label": "int"}
 
 def series(path):
     """('caretaker' or 'self talk', steps, words) of one trace"""
-    rows = figlib.read_csv(path, COLUMNS, "an ./apps/replay trace")
-    for prev, r in zip([None] + rows, rows):
-        if prev is not None and r["step"] != prev["step"] + 1:
-            figlib.die(f"{path}:{r['_line']}: step {r['step']} (expected {prev['step'] + 1}: one row per step)")
-        for c in ("caretaker_word", "selftalk_label"):
-            if not -1 <= r[c] <= 3:
-                figlib.die(f"{path}:{r['_line']}: {c} {r[c]} (expected -1 for none or 0-3: reach, open, grasp, move)")
+    rows = figlib.read_trace(path, COLUMNS, "an ./apps/replay trace")
     care = any(r["caretaker_word"] >= 0 for r in rows)
     col = "caretaker_word" if care else "selftalk_label"
     return ("caretaker" if care else "self talk"), [r["step"] for r in rows], [r[col] for r in rows]

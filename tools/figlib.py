@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
-"""Shared by the thesis-figure scripts (tools/fig_*.py): CSV reading that names FILE:LINE and what
-was expected, type-7 quartiles, the conditions' order, and writing PNG and SVG through
-matplotlib (Debian's python3-matplotlib; run the scripts with /usr/bin/python3).
+"""Shared by the thesis-figure scripts (tools/fig_*.py) and the robot's pictures and videos
+(draw_trial.py, trial_video.py): CSV reading that names FILE:LINE and what was expected, replay
+traces, type-7 quartiles, the conditions' order, and writing PNG and SVG through matplotlib
+(Debian's python3-matplotlib; run the scripts with /usr/bin/python3).
 
 Every script reads and checks all of its input before it imports matplotlib, so a malformed
 file is refused quickly and without drawing anything. Errors go to stderr as "PROG: message",
@@ -34,7 +35,9 @@ def _float(v):
     return x
 
 
-KINDS = {"int": (_int, "an integer"), "float": (_float, "a finite number"), "str": (str, "a name")}
+# "text" may be empty (replay's event column), "str" may not
+KINDS = {"int": (_int, "an integer"), "float": (_float, "a finite number"), "str": (str, "a name"),
+         "text": (str, "text")}
 
 
 def line_of(data, offset):
@@ -84,6 +87,21 @@ def read_csv(path, columns, what):
         rows.append(row)
     if not rows:
         die(f"{path}: no rows after the header (expected {what})")
+    return rows
+
+
+def read_trace(path, columns, what="an ./apps/replay trace (--out)"):
+    """the rows of one trial's replay trace, one per step, each step the one before's + 1;
+    caretaker_word and selftalk_label (when in `columns`) -1 (none) or a word 0-3"""
+    rows = read_csv(path, columns, what)
+    for prev, r in zip([None] + rows, rows):
+        if prev is not None and r["step"] != prev["step"] + 1:
+            die(f"{path}:{r['_line']}: step {r['step']} (expected {prev['step'] + 1}: one row per "
+                "step)")
+        for c in ("caretaker_word", "selftalk_label"):
+            if c in columns and not -1 <= r[c] <= 3:
+                die(f"{path}:{r['_line']}: {c} {r[c]} (expected -1 for none or 0-3: "
+                    f"{', '.join(WORDS)})")
     return rows
 
 
