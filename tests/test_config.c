@@ -116,6 +116,11 @@ static void test_config_errors(void) {
                ":2: key 'ga.population': '10.5' is not an integer (expected an integer in [2, 100000])");
   expect_error("[ga]\npopulation = 1e400\n", ST_ERR_PARSE, "'1e400' is not an integer");
   expect_error("[network]\nlambda = 1e400\n", ST_ERR_PARSE, "'1e400' is not a number");
+  /* eq. 2.6 divides by open_h, eq. 2.7 by 1 - grasp_h: 0 and 1 would give infinite fitness */
+  expect_error("[fitness]\nopen_h = 0\n", ST_ERR_RANGE,
+               ":2: key 'fitness.open_h': 0 is out of range (expected a number in [0.01, 1])");
+  expect_error("[fitness]\ngrasp_h = 1\n", ST_ERR_RANGE,
+               ":2: key 'fitness.grasp_h': 1 is out of range (expected a number in [0, 0.99])");
   expect_error("[network]\narch = C\n", ST_ERR_RANGE,
                ":2: key 'network.arch': 'C' is not a valid choice (expected one of base|A|B)");
   expect_error("[ga]\nelites = 3\nelites = 4\n", ST_ERR_PARSE,

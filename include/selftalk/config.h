@@ -83,8 +83,8 @@ extern "C" {
   REAL(fitness, move_max, 2.0, 0.0, 100.0, "object-moving penalty cap per step") \
   REAL(fitness, focus_weight, 0.2, 0.0, 1.0, "eq. 2.4: S = w f_f + (1 - w) s_p when the focus is correct, w f_f otherwise") \
   REAL(fitness, decay, 10.0, 0.0, 1000.0, "distance terms are exp(-decay d) (eq. 2.5-2.8, 2.12), 1/m") \
-  REAL(fitness, open_h, 0.7, 0.0, 1.0, "open: openness the step fitness peaks at and the success needs (h > this; eq. 2.6)") \
-  REAL(fitness, grasp_h, 0.4, 0.0, 1.0, "grasp: openness the step fitness peaks at and the success needs (h < this; eq. 2.7)") \
+  REAL(fitness, open_h, 0.7, 0.01, 1.0, "open: openness the step fitness peaks at and the success needs (h > this; eq. 2.6)") \
+  REAL(fitness, grasp_h, 0.4, 0.0, 0.99, "grasp: openness the step fitness peaks at and the success needs (h < this; eq. 2.7)") \
   REAL(fitness, success_dist, 0.03, 0.0, 1.0, "reach/open (d_r), grasp (d_g), simplified move (d_mhat) succeed below this, m") \
   REAL(fitness, palm_down, 0.9, 0.0, 1.0, "open and grasp success need p above this") \
   REAL(fitness, bonus, 10.0, 0.0, 1000.0, "bonus per successful trial (eq. 2.3)") \
