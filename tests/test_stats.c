@@ -3,6 +3,7 @@
  * split of the ranks, the normal approximation by its textbook formula, both re-derived by
  * tests/fixtures/stats/derive_mwu.py (itertools, math.erfc) and cross-checked there with SciPy
  * 1.10.1's mannwhitneyu (Debian's python3-scipy); textbook cases cited where they come from. */
+#include <float.h>
 #include <math.h>
 
 #include "selftalk/stats.h"
@@ -221,6 +222,22 @@ static void test_quartiles_type7(void) {
   CU_ASSERT_EQUAL(st_quantile_sorted(s, 6, 0.0), 10.0);
 }
 
+/* finite values whose differences overflow: the quartiles stay finite and between them */
+static void test_quartiles_extremes(void) {
+  const double x[] = {-DBL_MAX, DBL_MAX, -DBL_MAX, DBL_MAX}; /* median: h = 1.5 */
+  stQuartiles q;
+  CU_ASSERT_EQUAL(st_quartiles(x, 4, &q, NULL, 0), ST_OK);
+  CU_ASSERT(isfinite(q.q1) && isfinite(q.median) && isfinite(q.q3));
+  CU_ASSERT_EQUAL(q.q1, -DBL_MAX);
+  CU_ASSERT_EQUAL(q.median, 0.0);
+  CU_ASSERT_EQUAL(q.q3, DBL_MAX);
+  const double y[] = {-DBL_MAX, DBL_MAX};
+  CU_ASSERT_EQUAL(st_quartiles(y, 2, &q, NULL, 0), ST_OK);
+  CU_ASSERT(isfinite(q.q1) && isfinite(q.q3));
+  CU_ASSERT(fabs(q.median) <= DBL_MAX * 1e-15); /* the midpoint, 0 up to rounding */
+  CU_ASSERT(q.q1 < 0.0 && q.q3 > 0.0);
+}
+
 static void test_quartiles_errors(void) {
   const double x[] = {1, INFINITY};
   stQuartiles q;
@@ -242,5 +259,6 @@ void st_suite_stats(void) {
   ST_ADD_TEST(test_mwu_all_equal);
   ST_ADD_TEST(test_mwu_errors);
   ST_ADD_TEST(test_quartiles_type7);
+  ST_ADD_TEST(test_quartiles_extremes);
   ST_ADD_TEST(test_quartiles_errors);
 }

@@ -150,7 +150,11 @@ double st_quantile_sorted(const double *sorted, int n, double p) {
   const int j = (int)floor(h);
   if (j >= n - 1) return sorted[n - 1];
   if (j < 0) return sorted[0];
-  return sorted[j] + (h - j) * (sorted[j + 1] - sorted[j]);
+  const double a = sorted[j], b = sorted[j + 1], f = h - j, d = b - a;
+  /* a + f (b - a), the usual form (exact at f = 0); when b - a overflows (finite values of
+   * opposite signs near DBL_MAX), the weighted mean, whose terms cannot */
+  const double q = isfinite(d) ? a + f * d : (1.0 - f) * a + f * b;
+  return fmin(fmax(q, a), b);
 }
 
 static int cmp_double(const void *x, const void *y) {
