@@ -164,9 +164,9 @@ if [ "$before" -ge 5 ] && [ "$before" -lt 80 ] && [ $rc_no = 2 ] && [ "$left" -g
    grep -q "80 trials ($before from the journal)" "$tmp/k2r.err"; then
   ok "killed after $before of 80 trials, --resume gives the files of a run straight through and removes the killed writer's temporary files (refused without --resume, which changes nothing)"
 else ko "resume" "before=$before rc=$rc_no/$rc left=$left $(ls "$tmp/k2") $(tail -1 "$tmp/k2r.err")"; fi
-# the journal's results are used as they are: unit 0 marked open_jumped shows in the summary
+# the journal's results are used as they are: unit 0 made open_jumped (heard grasp only) shows in the summary
 cp -r "$tmp/k2" "$tmp/k3"
-sed -i 's/^0,\(.*\),0,\([a-z]*\)$/0,\1,1,\2/' "$tmp/k3/posteval.journal"
+sed -i 's/^0,\(.*\),0,\([a-z]*\)$/0,\1,1,g/' "$tmp/k3/posteval.journal"  # heard grasp, never open
 "$PE" "${kr[@]}" --out "$tmp/k3" --resume > /dev/null 2>&1
 j1=$(awk -F, 'NR == 2 { print $8 }' "$tmp/k1/summary.csv") j3=$(awk -F, 'NR == 2 { print $8 }' "$tmp/k3/summary.csv")
 if [ -n "$j1" ] && [ "$j3" = $((j1 + 1)) ]; then ok "resume takes the journalled results (an edited unit shows: open_jumped $j1 -> $j3)"

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "posteval/journal.h"
 #include "selftalk/posteval.h"
 #include "selftalk/scripted.h"
 #include "test_util.h"
@@ -460,6 +461,45 @@ static void test_post_load_population(void) {
   ST_ASSERT_CONTAINS(err, "data: neither population.genome nor checkpoint");
 }
 
+/* the journal's reader takes only what a trial can give (lib/posteval/journal.c): each line
+ * below contradicts itself and is refused naming the journal and its line 5 */
+static void test_post_journal_contradictions(void) {
+  const char *head = "# selftalk posteval journal 1\n# fingerprint 00000000000000ab\n# units 4\n"
+                     "unit,success,reached_step,steps_run,end,unstable,open_jumped,heard\n";
+  static const struct {
+    const char *line, *why;
+  } bad[] = {
+      {"0,0,-1,30,3,0,0,r\n", "an end posteval never writes"},
+      {"0,0,-1,61,0,0,0,r\n", "more steps run than the trial has"},
+      {"0,0,-1,20,0,0,0,r\n", "end full before the trial's last step"},
+      {"0,0,-1,60,1,0,0,r\n", "success, reached_step, steps_run and end disagree"},
+      {"0,1,10,30,1,0,0,rogm\n", "success, reached_step, steps_run and end disagree"},
+      {"0,0,-1,60,0,1,0,r\n", "unstable with end full"},
+      {"0,0,-1,30,2,0,1,rogm\n", "open_jumped disagrees with the words heard"},
+      {"0,0,-1,30,2,0,0,rgm\n", "open_jumped disagrees with the words heard"},
+  };
+  uint8_t done[4];
+  stPostResult res[4];
+  long ndone;
+  char err[1024], text[1024];
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    snprintf(text, sizeof text, "%s%s", head, bad[i].line);
+    err[0] = 0;
+    CU_ASSERT_EQUAL(st__post_journal_parse("j.journal", text, strlen(text), 0xab, 4, 60, done, res,
+                                           &ndone, err, sizeof err), ST_ERR_PARSE);
+    ST_ASSERT_CONTAINS(err, "j.journal:5: ");
+    ST_ASSERT_CONTAINS(err, bad[i].why);
+  }
+  /* what posteval writes: a success ending at its step, a failure (unstable or not), a full
+   * trial, a success on the step the simulation gave up */
+  snprintf(text, sizeof text, "%s0,1,29,30,1,0,0,rogm\n1,0,-1,12,2,1,1,rg\n2,0,-1,60,0,0,0,ro\n"
+           "3,1,9,10,1,1,0,\n", head);
+  CU_ASSERT_EQUAL(st__post_journal_parse("j.journal", text, strlen(text), 0xab, 4, 60, done, res,
+                                         &ndone, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(ndone, 4);
+  CU_ASSERT(res[0].success == 1 && res[0].reached_step == 29 && res[1].open_jumped == 1);
+}
+
 void st_suite_posteval(void) {
   ST_ADD_SUITE("posteval");
   ST_ADD_TEST(test_post_trained_tables);
@@ -470,4 +510,5 @@ void st_suite_posteval(void) {
   ST_ADD_TEST(test_post_summary_and_csv);
   ST_ADD_TEST(test_post_load_run);
   ST_ADD_TEST(test_post_load_population);
+  ST_ADD_TEST(test_post_journal_contradictions);
 }

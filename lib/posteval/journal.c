@@ -118,28 +118,44 @@ static int heard_ok(const char *h) {
   return 1;
 }
 
-/* one trial line into res[u]; 0 when malformed */
-static int parse_line(const char *line, long units, long *unit, stPostResult *r) {
+/* one trial line of a trial of `steps` steps into res[u]; NULL, or what is wrong with it. A
+ * line must be one posteval writes (st_post_run_trial): the fields in their ranges, and
+ * together what a trial can give. */
+static const char *parse_line(const char *line, long units, int steps, long *unit,
+                              stPostResult *r) {
   const char *s = line;
   long u, v[6];
-  static const long lo[6] = {0, -1, 0, 0, 0, 0}, hi[6] = {1, STEP_MAX, STEP_MAX, 3, 1, 1};
-  if (!field(&s, 0, units - 1, &u)) return 0;
+  static const long lo[6] = {0, -1, 1, 0, 0, 0}, hi[6] = {1, STEP_MAX, STEP_MAX, 3, 1, 1};
+  if (!field(&s, 0, units - 1, &u)) return "not a trial line";
   for (int i = 0; i < 6; i++)
-    if (!field(&s, lo[i], hi[i], &v[i])) return 0;
-  if (strlen(s) > ST_POST_HEARD_MAX + 1 || !heard_ok(s)) return 0;
-  /* a success has its step, within the steps run, and ended so */
-  if ((v[0] == 1) != (v[1] >= 0) || (v[0] && v[3] != ST_END_SUCCESS) || (v[1] >= 0 && v[1] >= v[2]))
-    return 0;
+    if (!field(&s, lo[i], hi[i], &v[i])) return "not a trial line";
+  if (strlen(s) > ST_POST_HEARD_MAX + 1 || !heard_ok(s)) return "not a trial line";
+  const long success = v[0], reached = v[1], run = v[2], end = v[3], unstable = v[4];
+  if (end != ST_END_FULL && end != ST_END_SUCCESS && end != ST_END_FAILURE)
+    return "an end posteval never writes (expected 0 full, 1 success or 2 failure)";
+  if (run > steps) return "more steps run than the trial has";
+  /* a success has its step, ended the trial there (its last step), and ended so */
+  if ((success == 1) != (reached >= 0) || (success == 1) != (end == ST_END_SUCCESS) ||
+      (reached >= 0 && reached != run - 1))
+    return "success, reached_step, steps_run and end disagree (expected success 1 with "
+           "end 1 and reached_step = steps_run - 1, or success 0 with reached_step -1)";
+  if (end == ST_END_FULL && run != steps)
+    return "end full before the trial's last step (expected steps_run = the trial's length)";
+  /* the simulation giving up ends a trial as a failure (or on the step it succeeded) */
+  if (unstable && end == ST_END_FULL) return "unstable with end full (expected end 2 failure)";
+  if (v[5] != st__post_open_jumped(s))
+    return "open_jumped disagrees with the words heard (expected 1 exactly when grasp or move "
+           "was heard but never open)";
   memset(r, 0, sizeof *r);
-  r->success = (int)v[0];
-  r->reached_step = (int)v[1];
-  r->steps_run = (int)v[2];
-  r->end = (stTrialEnd)v[3];
-  r->unstable = (int)v[4];
+  r->success = (int)success;
+  r->reached_step = (int)reached;
+  r->steps_run = (int)run;
+  r->end = (stTrialEnd)end;
+  r->unstable = (int)unstable;
   r->open_jumped = (int)v[5];
   strcpy(r->heard, s);
   *unit = u;
-  return 1;
+  return NULL;
 }
 
 /* the journal's text (read whole through the bounded reader), line by line */
@@ -179,8 +195,40 @@ static stStatus header(jtext *f, const char *path, uint64_t fingerprint, long un
   return ST_OK;
 }
 
-stStatus st__post_journal_read(const char *path, uint64_t fingerprint, long units, uint8_t *done,
-                               stPostResult *res, long *ndone, char *err, size_t errsz) {
+stStatus st__post_journal_parse(const char *path, const char *text, size_t len,
+                                uint64_t fingerprint, long units, int steps, uint8_t *done,
+                                stPostResult *res, long *ndone, char *err, size_t errsz) {
+  memset(done, 0, (size_t)units);
+  memset(res, 0, (size_t)units * sizeof *res);
+  *ndone = 0;
+  stStatus st = st_text_check(path, text, len, err, errsz);
+  if (st) return st;
+  jtext f = {text, text + len};
+  st = header(&f, path, fingerprint, units, err, errsz);
+  char line[LINE_MAX_LEN];
+  int rc;
+  for (long n = 5; !st && (rc = get_line(&f, line, sizeof line)) != 0; n++) {
+    long u;
+    stPostResult r;
+    const char *why = rc < 0 ? "not a trial line" : parse_line(line, units, steps, &u, &r);
+    if (why)
+      st = (st__errf(err, errsz, "%s:%ld: %s (expected %s with unit 0..%ld, success 0/1, its "
+                     "step, the steps run 1..%d, end 0/1/2, unstable 0/1, open_jumped 0/1, the "
+                     "words heard)", path, n, why, COLUMNS, units - 1, steps), ST_ERR_PARSE);
+    else if (done[u])
+      st = (st__errf(err, errsz, "%s:%ld: unit %ld twice", path, n, u), ST_ERR_PARSE);
+    else {
+      done[u] = 1;
+      res[u] = r;
+      (*ndone)++;
+    }
+  }
+  return st;
+}
+
+stStatus st__post_journal_read(const char *path, uint64_t fingerprint, long units, int steps,
+                               uint8_t *done, stPostResult *res, long *ndone, char *err,
+                               size_t errsz) {
   memset(done, 0, (size_t)units);
   memset(res, 0, (size_t)units * sizeof *res);
   *ndone = 0;
@@ -192,25 +240,8 @@ stStatus st__post_journal_read(const char *path, uint64_t fingerprint, long unit
   size_t len;
   stStatus st = st_text_read(path, max, &text, &len, err, errsz);
   if (st) return st;
-  jtext f = {text, text + len};
-  st = header(&f, path, fingerprint, units, err, errsz);
-  char line[LINE_MAX_LEN];
-  int rc;
-  for (long n = 5; !st && (rc = get_line(&f, line, sizeof line)) != 0; n++) {
-    long u;
-    stPostResult r;
-    if (rc < 0 || !parse_line(line, units, &u, &r))
-      st = (st__errf(err, errsz, "%s:%ld: not a trial line (expected %s with unit 0..%ld, "
-                     "success 0/1, its step, the steps run, end 0..3, 0/1, 0/1, the words heard)",
-                     path, n, COLUMNS, units - 1), ST_ERR_PARSE);
-    else if (done[u])
-      st = (st__errf(err, errsz, "%s:%ld: unit %ld twice", path, n, u), ST_ERR_PARSE);
-    else {
-      done[u] = 1;
-      res[u] = r;
-      (*ndone)++;
-    }
-  }
+  st = st__post_journal_parse(path, text, len, fingerprint, units, steps, done, res, ndone, err,
+                              errsz);
   free(text);
   return st;
 }

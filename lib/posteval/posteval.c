@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/internal.h"
+#include "posteval/journal.h"
 #include "selftalk/posteval.h"
 
 static const char *const g_tests[ST_POST_NTESTS] = {"integration", "robustness", "generalisation"};
@@ -236,8 +237,11 @@ static void post_end(void *self, const stWorld *w) {
   r->success = s->ir.reached_step >= 0;
   r->unstable = s->ir.unstable;
   r->end = r->success ? ST_END_SUCCESS : s->ir.end;
-  const char *h = r->heard;
-  r->open_jumped = !strchr(h, 'o') && (strchr(h, 'g') || strchr(h, 'm'));
+  r->open_jumped = st__post_open_jumped(r->heard);
+}
+
+int st__post_open_jumped(const char *heard) {
+  return !strchr(heard, 'o') && (strchr(heard, 'g') || strchr(heard, 'm'));
 }
 
 stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,

@@ -437,8 +437,8 @@ static stStatus open_journal(postRun *R, char *err, size_t errsz) {
                     "(or re-write its files), or choose another --out", d->out_dir, R->journal),
            ST_ERR_ARG;
   const long units = (long)R->nind * R->pd.trials;
-  stStatus st = st__post_journal_read(R->journal, R->fingerprint, units, R->unit_done, R->res,
-                                      &R->resumed, err, errsz);
+  stStatus st = st__post_journal_read(R->journal, R->fingerprint, units, R->pd.steps,
+                                      R->unit_done, R->res, &R->resumed, err, errsz);
   for (long u = 0; !st && u < units; u++)
     if (R->unit_done[u] && R->ind[u / R->pd.trials].excluded)
       st = (st__errf(err, errsz, "%s: unit %ld is of an excluded individual", R->journal, u),
