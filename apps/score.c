@@ -7,8 +7,9 @@
  * prediction: the prediction fitness (eq. 2.15-2.24, selftalk/prediction.h). FILE has one row
  * per step, "step,word,o_reach,o_open,o_grasp,o_move": the step (0, 1, 2, ... within a trial),
  * the caretaker's word given at that step (0-3 reach, open, grasp, move; -1 none) and the four
- * linguistic outputs of the network at that step. Trials are separated by blank lines; lines
- * starting with '#' and a header line starting with "step" are skipped. Every trial is treated
+ * linguistic outputs of the network at that step (finite, within +-ST_PRED_OUTPUT_MAX). Trials
+ * are separated by blank lines; lines starting with '#' are skipped, and so is a header line
+ * starting with "step" before the first row (a later one is refused). No field may be empty. Every trial is treated
  * as one whose object reached the target. Prints
  *   F_step=... F_switch=... B_pred=... F_pred=...
  * (%.17g): F_step and F_switch averaged over the trials, B_pred summed, F_pred = B_pred +
@@ -18,6 +19,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,16 +68,25 @@ static void start_trial(table *t) {
   t->ntrials++;
 }
 
+#define COLUMNS "step,word,o_reach,o_open,o_grasp,o_move"
+
 /* one row "step,word,o0,o1,o2,o3" of the current trial, or dies naming the line */
 static void parse_row(const char *path, int lineno, char *line, int expect_step, table *t) {
-  char *field[6], *save = NULL;
+  char *field[6];
   int nf = 0;
-  for (char *f = strtok_r(line, ",", &save); f && nf < 7; f = strtok_r(NULL, ",", &save))
-    if (nf < 6) field[nf++] = f;
-    else nf++;
-  if (nf != 6)
-    app_die(prog, "%s:%d: %d fields (expected 6: step,word,o_reach,o_open,o_grasp,o_move)", path,
-            lineno, nf);
+  for (char *f = line;; nf++) { /* every comma separates two fields: none may be empty */
+    char *c = strchr(f, ',');
+    if (c) *c = 0;
+    while (isspace((unsigned char)*f)) f++;
+    for (size_t n = strlen(f); n > 0 && isspace((unsigned char)f[n - 1]);) f[--n] = 0;
+    if (!*f)
+      app_die(prog, "%s:%d: field %d is empty (expected 6 fields: " COLUMNS ")", path, lineno,
+              nf + 1);
+    if (nf < 6) field[nf] = f;
+    if (!c) break;
+    f = c + 1;
+  }
+  if (++nf != 6) app_die(prog, "%s:%d: %d fields (expected 6: " COLUMNS ")", path, lineno, nf);
   char *end;
   errno = 0;
   const long step = strtol(field[0], &end, 10);
@@ -90,16 +101,20 @@ static void parse_row(const char *path, int lineno, char *line, int expect_step,
   for (int m = 0; m < ST_PRED_NWORDS; m++) {
     errno = 0;
     o[m] = strtod(field[2 + m], &end);
-    while (isspace((unsigned char)*end)) end++;
-    if (end == field[2 + m] || *end || errno)
+    if (end == field[2 + m] || *end)
       app_die(prog, "%s:%d: output %d '%s' is not a number", path, lineno, m, field[2 + m]);
+    /* the prediction's own bound (selftalk/prediction.h): every difference stays finite */
+    if (errno == ERANGE || !(fabs(o[m]) <= ST_PRED_OUTPUT_MAX))
+      app_die(prog, "%s:%d: output %d '%s' (expected a finite number within +-%g: the "
+              "network's linguistic outputs are in [0, 1])", path, lineno, m, field[2 + m],
+              ST_PRED_OUTPUT_MAX);
   }
   add_row(t, (int)word, o);
 }
 
 static void read_table(const char *path, table *t) {
   char *text = app_read_text(prog, path, NULL);
-  int lineno = 0, in_trial = 0;
+  int lineno = 0, in_trial = 0, content = 0;
   /* lines one by one; strtok_r would skip empty lines, which end trials */
   for (char *line = text, *next; line; line = next) {
     next = strchr(line, '\n');
@@ -114,12 +129,20 @@ static void read_table(const char *path, table *t) {
       in_trial = 0; /* a blank line ends a trial */
       continue;
     }
-    if (*p == '#' || !strncmp(p, "step", 4)) continue;
+    if (*p == '#') continue;
+    if (!strncmp(p, "step", 4)) { /* the header: the first line that is not a comment only */
+      if (content)
+        app_die(prog, "%s:%d: a header line after the first line (expected rows of numbers: "
+                "the header " COLUMNS " comes first, once)", path, lineno);
+      content = 1;
+      continue;
+    }
+    content = 1;
     if (!in_trial) start_trial(t), in_trial = 1;
     parse_row(path, lineno, p, t->len[t->ntrials - 1], t);
   }
   free(text);
-  if (!t->ntrials) app_die(prog, "%s: no rows (expected step,word,o_reach,o_open,o_grasp,o_move)", path);
+  if (!t->ntrials) app_die(prog, "%s: no rows (expected " COLUMNS ")", path);
 }
 
 static int prediction(const char *path, int per_trial, const stConfig *cfg) {

@@ -68,6 +68,24 @@ if [ $r1 = 2 ] && grep -q "bad1.csv:2: step '2' (expected 1" "$tmp/e1" &&
 else
   ko "score refusals" "$(cat "$tmp"/e[1-5])"
 fi
+# rows with an empty field (strtok took ",," for one comma), a second header line (skipped
+# anywhere before), finite outputs whose differences overflow (1 - (h1 - o) = -inf)
+printf '0,-1,0.9,,0.1,0.1,0.1\n1,0,0.9,0.1,0.1,0.1\n' > "$tmp/bad6.csv"
+printf 'step,word,o_reach,o_open,o_grasp,o_move\n0,-1,0.9,0.1,0.1,0.1\n1,0,0.9,0.1,0.1,0.1\nstep,word,o_reach,o_open,o_grasp,o_move\n2,0,0.9,0.1,0.1,0.1\n' > "$tmp/bad7.csv"
+printf '0,-1,1e308,-1e308,0.1,0.1\n1,1,1e308,-1e308,0.1,0.1\n2,1,1e308,-1e308,0.1,0.1\n' > "$tmp/bad8.csv"
+printf '0,-1,0.9,0.1,0.1,0.1,\n1,0,0.9,0.1,0.1,0.1\n' > "$tmp/bad9.csv"
+"$APPDIR/score" prediction "$tmp/bad6.csv" > /dev/null 2> "$tmp/e6"; r6=$?
+"$APPDIR/score" prediction "$tmp/bad7.csv" > /dev/null 2> "$tmp/e7"; r7=$?
+"$APPDIR/score" prediction "$tmp/bad8.csv" > "$tmp/o8" 2> "$tmp/e8"; r8=$?
+"$APPDIR/score" prediction "$tmp/bad9.csv" > /dev/null 2> "$tmp/e9"; r9=$?
+if [ $r6 = 2 ] && grep -q "bad6.csv:1: field 4 is empty (expected 6 fields: step,word," "$tmp/e6" &&
+   [ $r7 = 2 ] && grep -q "bad7.csv:4: a header line after the first line" "$tmp/e7" &&
+   [ $r8 = 2 ] && grep -q "bad8.csv:1: output 0 '1e308' (expected a finite number within +-1e+06" "$tmp/e8" &&
+   [ $r9 = 2 ] && grep -q "bad9.csv:1: field 7 is empty" "$tmp/e9" && [ ! -s "$tmp/o8" ]; then
+  ok "score refuses empty fields, a second header and outputs whose differences overflow, naming FILE:LINE"
+else
+  ko "score: empty fields, second header, overflow" "$r6 $r7 $r8 $r9 $(cat "$tmp"/e[6-9] "$tmp/o8")"
+fi
 
 # ---- evolve: the four conditions, tiny (4 genotypes: the best of each simple-prim population
 # in data/evolved; 30-step trials), 2 generations: the first generation's variant, then the

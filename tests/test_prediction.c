@@ -203,7 +203,17 @@ static void test_pred_refusals(void) {
   t.word = ok;
   o[1][2] = NAN;
   CU_ASSERT_EQUAL(st_pred_trial(&d, &t, &s, err, sizeof err), ST_ERR_ARG);
-  ST_ASSERT_CONTAINS(err, "step 1: output 2 is not finite");
+  ST_ASSERT_CONTAINS(err, "step 1: output 2 is nan (expected a finite number within +-1e+06)");
+  /* finite outputs whose differences overflow to -inf (1 - (h1 - o) with h1 = 1e308 and
+   * o = -1e308) are refused, and the bound itself scores finitely */
+  o[1][2] = -1e308;
+  o[1][0] = 1e308;
+  CU_ASSERT_EQUAL(st_pred_trial(&d, &t, &s, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "step 1: output 0 is 1e+308 (expected a finite number within +-1e+06)");
+  for (int k = 0; k < 3; k++)
+    for (int p = 0; p < ST_PRED_NWORDS; p++) o[k][p] = (k + p) % 2 ? ST_PRED_OUTPUT_MAX : -ST_PRED_OUTPUT_MAX;
+  CU_ASSERT_EQUAL(st_pred_trial(&d, &t, &s, err, sizeof err), ST_OK);
+  CU_ASSERT(isfinite(s.f_step) && isfinite(s.f_switch) && isfinite(s.b_pred));
 }
 
 void st_suite_prediction(void) {

@@ -26,6 +26,11 @@ extern "C" {
 
 #define ST_PRED_NWORDS 4 /* reach, open, grasp, move */
 
+/* The largest |output| a trial may have: the network's linguistic outputs are sigmoids in
+ * [0, 1] (emitted with a gain of at most 1000), and below this every difference and sum of
+ * eq. 2.15-2.24 stays finite (finite values near the largest double gave -inf). */
+#define ST_PRED_OUTPUT_MAX 1e6
+
 /* The protocol numbers of eq. 2.15-2.24 (keys prediction.* and fitness.bonus / scale). */
 typedef struct stPredDef {
   int window;       /* eq. 2.18, 2.20: steps looked back before a switch; 20 */
@@ -56,8 +61,9 @@ typedef struct stPredScore {
   int correct;                      /* steps with c(t) */
 } stPredScore;
 
-/* Scores one trial. ST_ERR_ARG (naming the step) for n < 2, a word outside -1..3, or no word
- * at a step t >= 1 (every step after the first must hear one: caretaker.first_step = 1). */
+/* Scores one trial. ST_ERR_ARG (naming the step) for n < 2, a word outside -1..3, no word
+ * at a step t >= 1 (every step after the first must hear one: caretaker.first_step = 1), or an
+ * output that is not finite or beyond +-ST_PRED_OUTPUT_MAX. */
 stStatus st_pred_trial(const stPredDef *def, const stPredTrial *t, stPredScore *s, char *err,
                        size_t errsz);
 

@@ -93,9 +93,9 @@ static stStatus check_trial(const stPredTrial *t, char *err, size_t errsz) {
       return st__errf(err, errsz, "prediction: step %d: no word (expected the caretaker to "
                       "speak at every step after the first)", k), ST_ERR_ARG;
     for (int p = 0; p < ST_PRED_NWORDS; p++)
-      if (!isfinite(t->o[k][p]))
-        return st__errf(err, errsz, "prediction: step %d: output %d is not finite", k, p),
-               ST_ERR_ARG;
+      if (!(fabs(t->o[k][p]) <= ST_PRED_OUTPUT_MAX))
+        return st__errf(err, errsz, "prediction: step %d: output %d is %g (expected a finite "
+                        "number within +-%g)", k, p, t->o[k][p], ST_PRED_OUTPUT_MAX), ST_ERR_ARG;
   }
   return ST_OK;
 }
