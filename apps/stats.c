@@ -6,7 +6,7 @@
  *   stats quartiles FILE
  *   stats table SUMMARY.csv [--test TEST] [--csv]
  *   stats describe SUMMARY.csv [--test TEST]
- *   stats selftalk TRIALS.csv [--test TEST] [--alpha A]
+ *   stats selftalk TRIALS.csv [--test TEST] [--alpha A] [--config FILE] [--set KEY=VALUE]
  *   stats times TRIALS.csv [--test TEST] [--alpha A] [--config FILE] [--set robot.control_dt=S]
  *
  * mwu: the two-tailed Mann-Whitney U test of two files of one number per line (blank lines and
@@ -24,7 +24,10 @@
  * the caretaker (NAME0), and the mean time to the target of its successes, as CSV. times:
  * Table 3.3, those times for the individuals significantly (p <= alpha, 0.01) better with self
  * talk; seconds = (reached_step + 1) x robot.control_dt.
- * The CSV formats are docs/PROTOCOL.md's ("Post-evaluation files"). Errors name FILE:LINE and
+ * The CSV formats are docs/PROTOCOL.md's ("Post-evaluation files"): a trials file's rows are
+ * checked against the tests' trial tables (st_post_trial_layout; posteval.* keys from --config
+ * / --set), an individual or trial given twice is refused; selftalk and times sort the rows once
+ * (O(n log n)). Errors name FILE:LINE and
  * what was expected; exit 2. Files are read through the library's bounded reader (at most
  * 64 MiB, no NUL bytes). */
 #define _POSIX_C_SOURCE 200809L
@@ -37,6 +40,7 @@
 #include <string.h>
 
 #include "app_common.h"
+#include "selftalk/posteval.h"
 #include "selftalk/stats.h"
 
 static const char *prog = "stats";
@@ -46,7 +50,7 @@ static const char *prog = "stats";
   "       stats quartiles FILE\n"                                                              \
   "       stats table SUMMARY.csv [--test TEST] [--csv]\n"                                     \
   "       stats describe SUMMARY.csv [--test TEST]\n"                                          \
-  "       stats selftalk TRIALS.csv [--test TEST] [--alpha A]\n"                               \
+  "       stats selftalk TRIALS.csv [--test TEST] [--alpha A] [--config FILE] [--set KEY=VALUE]\n"  \
   "       stats times TRIALS.csv [--test TEST] [--alpha A] [--config FILE] [--set KEY=VALUE]\n"
 
 static void *xrealloc(void *p, size_t n, size_t size) {
@@ -274,12 +278,43 @@ typedef struct rows {
   char *data;
   int n;
   size_t size;
+  int *line; /* each row's line in the file */
+  int *ord;  /* the rows by key (then line) */
 } rows;
 
 typedef void (*rowCheck)(const textFile *t, const void *row);
+/* a row's key against another's (<0, 0, >0); and the key in words, for messages */
+typedef int (*rowKey)(const void *a, const void *b);
+typedef void (*rowName)(const void *row, char *buf, size_t n);
+
+static const rows *g_rows;
+static rowKey g_key;
+
+static int cmp_order(const void *x, const void *y) {
+  const int i = *(const int *)x, j = *(const int *)y;
+  const int c = g_key(g_rows->data + g_rows->size * (size_t)i, g_rows->data + g_rows->size * (size_t)j);
+  return c ? c : (i > j) - (i < j);
+}
+
+/* the rows' order by key, then by line (O(n log n)); a key twice is refused at its second
+ * line */
+static void order_rows(const char *path, rows *rs, rowKey key, rowName name) {
+  rs->ord = xrealloc(NULL, (size_t)rs->n, sizeof *rs->ord);
+  for (int i = 0; i < rs->n; i++) rs->ord[i] = i;
+  g_rows = rs, g_key = key;
+  qsort(rs->ord, (size_t)rs->n, sizeof *rs->ord, cmp_order);
+  for (int i = 1; i < rs->n; i++) {
+    const int a = rs->ord[i - 1], b = rs->ord[i];
+    if (key(rs->data + rs->size * (size_t)a, rs->data + rs->size * (size_t)b)) continue;
+    char what[160];
+    name(rs->data + rs->size * (size_t)b, what, sizeof what);
+    app_die(prog, "%s:%d: %s twice (first at line %d; expected each once)", path, rs->line[b],
+            what, rs->line[a]);
+  }
+}
 
 static void load_csv(const char *path, const colSpec *cols, int ncols, size_t size,
-                     rowCheck check, rows *out) {
+                     rowCheck check, rowKey key, rowName name, rows *out) {
   textFile t;
   text_open(&t, path);
   check_header(&t, text_content(&t), cols, ncols);
@@ -294,7 +329,12 @@ static void load_csv(const char *path, const colSpec *cols, int ncols, size_t si
       header_names(cols, ncols, want, sizeof want);
       app_die(prog, "%s:%d: %d fields (expected at least %d: %s)", path, t.lineno, n, ncols, want);
     }
-    if (out->n == cap) out->data = xrealloc(out->data, (size_t)(cap = 2 * cap + 256), size);
+    if (out->n == cap) {
+      cap = 2 * cap + 256;
+      out->data = xrealloc(out->data, (size_t)cap, size);
+      out->line = xrealloc(out->line, (size_t)cap, sizeof *out->line);
+    }
+    out->line[out->n] = t.lineno;
     char *row = out->data + size * (size_t)out->n;
     memset(row, 0, size);
     for (int i = 0; i < ncols; i++) parse_field(&t, &cols[i], f[i], row);
@@ -303,10 +343,64 @@ static void load_csv(const char *path, const colSpec *cols, int ncols, size_t si
   }
   free(t.buf);
   if (!out->n) app_die(prog, "%s: no rows after the header", path);
+  order_rows(path, out, key, name);
 }
+
+static void rows_free(rows *rs) {
+  free(rs->data);
+  free(rs->line);
+  free(rs->ord);
+}
+
+/* an individual: (test, condition, run, individual) */
+static int ind_key(const char *ta, const char *ca, int ra, int ia, const char *tb, const char *cb,
+                   int rb, int ib) {
+  int c = strcmp(ta, tb);
+  if (!c) c = strcmp(ca, cb);
+  if (!c) c = (ra > rb) - (ra < rb);
+  if (!c) c = (ia > ib) - (ia < ib);
+  return c;
+}
+
+static int sum_key(const void *a, const void *b) {
+  const sumRow *x = a, *y = b;
+  return ind_key(x->test, x->cond, x->run, x->ind, y->test, y->cond, y->run, y->ind);
+}
+
+static void sum_name(const void *row, char *buf, size_t n) {
+  const sumRow *r = row;
+  snprintf(buf, n, "test %s condition %s run %d individual %d", r->test, r->cond, r->run, r->ind);
+}
+
+static int trial_ind_key(const trialRow *x, const trialRow *y) {
+  return ind_key(x->test, x->cond, x->run, x->ind, y->test, y->cond, y->run, y->ind);
+}
+
+static int trial_key(const void *a, const void *b) {
+  const trialRow *x = a, *y = b;
+  const int c = trial_ind_key(x, y);
+  return c ? c : (x->trial > y->trial) - (x->trial < y->trial);
+}
+
+static void trial_name(const void *row, char *buf, size_t n) {
+  const trialRow *r = row;
+  snprintf(buf, n, "test %s condition %s run %d individual %d trial %d", r->test, r->cond,
+           r->run, r->ind, r->trial);
+}
+
+/* the test's name: one of posteval's (selftalk/posteval.h) */
+static void check_test(const textFile *t, const char *test) {
+  if (st_post_test_parse(test) < 0)
+    app_die(prog, "%s:%d: test '%s' (expected integration, robustness or generalisation)",
+            t->path, t->lineno, test);
+}
+
+/* the tests' trial tables (posteval.* keys of --config / --set: the defaults are the thesis's) */
+static stPostDef g_def[ST_POST_NTESTS];
 
 static void check_sum(const textFile *t, const void *row) {
   const sumRow *r = row;
+  check_test(t, r->test);
   if (r->successes > r->trials || r->open_jumped > r->trials || r->excluded > 1)
     app_die(prog, "%s:%d: successes %d, open_jumped %d, excluded %d (expected successes and "
             "open_jumped <= trials (%d), excluded 0 or 1)", t->path, t->lineno, r->successes,
@@ -325,6 +419,22 @@ static void check_trial(const textFile *t, const void *row) {
   if (r->success && r->reached_step < 0)
     app_die(prog, "%s:%d: success 1 with reached_step -1 (expected the step the object reached "
             "the target)", t->path, t->lineno);
+  if (!r->success && r->reached_step >= 0)
+    app_die(prog, "%s:%d: success 0 with reached_step %d (expected -1: a failed trial never "
+            "reached the target)", t->path, t->lineno, r->reached_step);
+  check_test(t, r->test);
+  const stPostDef *d = &g_def[st_post_test_parse(r->test)];
+  if (r->trial >= d->trials)
+    app_die(prog, "%s:%d: trial %d (expected 0..%d: the %s test has %d trials; posteval.* keys "
+            "from --config / --set)", t->path, t->lineno, r->trial, d->trials - 1, r->test,
+            d->trials);
+  stPostTrial l;
+  st_post_trial_layout(d, r->trial, &l);
+  if (r->type != l.type || r->cell != l.cell || r->posture != l.posture || r->rep != l.repetition)
+    app_die(prog, "%s:%d: trial %d with type %d, cell %d, posture %d, repetition %d (expected "
+            "type %d, cell %d, posture %d, repetition %d: the %s test's trial table)", t->path,
+            t->lineno, r->trial, r->type, r->cell, r->posture, r->rep, l.type, l.cell, l.posture,
+            l.repetition, r->test);
 }
 
 #define ROW(rs, T, i) ((const T *)((rs)->data + (rs)->size * (size_t)(i)))
@@ -405,7 +515,7 @@ typedef struct samples {
 static void summary_samples(const opts *o, samples *s) {
   memset(s, 0, sizeof *s);
   rows *rs = &s->rs;
-  load_csv(o->pos[1], SUM_COLS, NCOLS(SUM_COLS), sizeof(sumRow), check_sum, rs);
+  load_csv(o->pos[1], SUM_COLS, NCOLS(SUM_COLS), sizeof(sumRow), check_sum, sum_key, sum_name, rs);
   conds tests = {{0}, 0};
   for (int i = 0; i < rs->n; i++) cond_add(&tests, ROW(rs, sumRow, i)->test);
   s->test = pick_test(o->pos[1], o->test, &tests);
@@ -427,7 +537,7 @@ static void summary_samples(const opts *o, samples *s) {
 
 static void samples_free(samples *s) {
   for (int k = 0; k < s->c.n; k++) free(s->x[k]), free(s->jumped[k]);
-  free(s->rs.data);
+  rows_free(&s->rs);
 }
 
 static const char *stars(double p) { return p <= 0.01 ? "**" : p <= 0.05 ? "*" : ""; }
@@ -514,20 +624,18 @@ typedef struct tallyT {
   double steps; /* sum of reached_step + 1 over the successes */
 } tallyT;
 
-typedef struct who {
-  const char *test, *cond;
-  int run, ind;
-} who;
+/* an individual's rows: rs->ord[start..end), in trial order; first: its first line's row */
+typedef struct group {
+  int start, end, first;
+} group;
 
-static int is_who(const trialRow *r, const who *w) {
-  return r->run == w->run && r->ind == w->ind && !strcmp(r->cond, w->cond) && !strcmp(r->test, w->test);
-}
+#define TROW(rs, g, k) ROW(rs, trialRow, (rs)->ord[(g)->start + (k)])
 
-static void tally(const rows *rs, const who *w, tallyT *t) {
+static void tally(const rows *rs, const group *g, tallyT *t) {
   memset(t, 0, sizeof *t);
-  for (int i = 0; i < rs->n; i++) {
-    const trialRow *r = ROW(rs, trialRow, i);
-    if (!is_who(r, w)) continue;
+  if (!g) return;
+  for (int k = 0; k < g->end - g->start; k++) {
+    const trialRow *r = TROW(rs, g, k);
     if (r->rep >= MAX_REPS) app_die(prog, "repetition %d (expected < %d)", r->rep, MAX_REPS);
     t->trials[r->rep]++;
     t->successes[r->rep] += r->success;
@@ -558,12 +666,13 @@ typedef struct comparison {
   const char *better;
 } comparison;
 
-static void compare(const opts *o, const rows *rs, const char *test, comparison *c) {
+/* self: the individual's rows in NAME (NULL: none, excluded); care: in NAME0 */
+static void compare(const opts *o, const rows *rs, const group *self, const group *care,
+                    comparison *c) {
   static tallyT t[2];
   static double x[2][MAX_REPS];
-  const who ws = {test, c->cond, c->run, c->ind}, wc = {test, c->variant, c->run, c->ind};
-  tally(rs, &ws, &t[0]);
-  tally(rs, &wc, &t[1]);
+  tally(rs, self, &t[0]);
+  tally(rs, care, &t[1]);
   c->excluded = t[0].total == 0;
   const int na = rep_pcts(&t[0], c->excluded ? &t[1] : &t[0], x[0]), nb = rep_pcts(&t[1], &t[1], x[1]);
   for (int k = 0; k < 2; k++) c->total[k] = t[k].total, c->succ[k] = t[k].succ, c->steps[k] = t[k].steps;
@@ -581,23 +690,64 @@ typedef struct comparisons {
   int n;
 } comparisons;
 
-/* the individuals (run, individual) of condition v in file order, each once, compared */
-static void compare_condition(const opts *o, const rows *rs, const char *test, const char *cond,
-                              const char *v, comparisons *out) {
-  for (int i = 0; i < rs->n; i++) {
-    const trialRow *r = ROW(rs, trialRow, i);
-    if (strcmp(r->cond, v) || strcmp(r->test, test)) continue;
-    int seen = 0;
-    for (int k = 0; k < out->n && !seen; k++)
-      seen = out->c[k].variant == v && out->c[k].run == r->run && out->c[k].ind == r->ind;
-    if (seen) continue;
-    out->c = xrealloc(out->c, (size_t)out->n + 1, sizeof *out->c);
+/* the individuals of the file, each a group of rows, in key order (O(n)) */
+static group *groups_of(const rows *rs, int *ng) {
+  group *g = xrealloc(NULL, (size_t)rs->n, sizeof *g);
+  *ng = 0;
+  for (int i = 0; i < rs->n;) {
+    group *x = &g[(*ng)++];
+    x->start = i, x->first = rs->ord[i];
+    const trialRow *r0 = ROW(rs, trialRow, rs->ord[i]);
+    while (i < rs->n && !trial_ind_key(ROW(rs, trialRow, rs->ord[i]), r0)) {
+      x->first = rs->ord[i] < x->first ? rs->ord[i] : x->first;
+      i++;
+    }
+    x->end = i;
+  }
+  return g;
+}
+
+/* the group of an individual, by binary search (O(log n)); NULL when it has no rows */
+static const group *find_group(const rows *rs, const group *g, int ng, const trialRow *want) {
+  int lo = 0, hi = ng;
+  while (lo < hi) {
+    const int mid = lo + (hi - lo) / 2;
+    const int c = trial_ind_key(TROW(rs, &g[mid], 0), want);
+    if (!c) return &g[mid];
+    if (c < 0) lo = mid + 1;
+    else hi = mid;
+  }
+  return NULL;
+}
+
+static int cmp_first(const void *x, const void *y) {
+  const int a = (*(const group *const *)x)->first, b = (*(const group *const *)y)->first;
+  return (a > b) - (a < b);
+}
+
+/* the individuals of condition v in file order (of their first rows), each against its rows
+ * in cond: O(n log n) */
+static void compare_condition(const opts *o, const rows *rs, const group *g, int ng,
+                              const char *test, const char *cond, const char *v,
+                              comparisons *out) {
+  const group **mine = xrealloc(NULL, (size_t)ng, sizeof *mine);
+  int n = 0;
+  for (int i = 0; i < ng; i++) {
+    const trialRow *r = TROW(rs, &g[i], 0);
+    if (!strcmp(r->cond, v) && !strcmp(r->test, test)) mine[n++] = &g[i];
+  }
+  qsort(mine, (size_t)n, sizeof *mine, cmp_first);
+  out->c = xrealloc(out->c, (size_t)out->n + (size_t)n, sizeof *out->c);
+  for (int i = 0; i < n; i++) {
+    trialRow want = *TROW(rs, mine[i], 0);
+    strcpy(want.cond, cond);
     comparison *c = &out->c[out->n++];
     memset(c, 0, sizeof *c);
     strcpy(c->cond, cond);
-    c->variant = v, c->run = r->run, c->ind = r->ind;
-    compare(o, rs, test, c);
+    c->variant = v, c->run = want.run, c->ind = want.ind;
+    compare(o, rs, find_group(rs, g, ng, &want), mine[i], c);
   }
+  free(mine);
 }
 
 /* NAME of a condition NAME0 (a caretaker variant) into base; 0 for other names. NAME need not
@@ -610,9 +760,16 @@ static int base_of(const char *v, char base[NAME_LEN]) {
   return 1;
 }
 
+/* the tests' trial tables from the configuration (--config, --set) */
+static void trial_tables(const opts *o, stConfig *cfg) {
+  app_config_resolve(&o->config, cfg, prog);
+  for (int t = 0; t < ST_POST_NTESTS; t++) st_post_def_from_config(cfg, (stPostTest)t, &g_def[t]);
+}
+
 /* every individual of every NAME0 in the file against NAME, in the thesis's order */
 static comparisons compare_all(const opts *o, rows *rs) {
-  load_csv(o->pos[1], TRIAL_COLS, NCOLS(TRIAL_COLS), sizeof(trialRow), check_trial, rs);
+  load_csv(o->pos[1], TRIAL_COLS, NCOLS(TRIAL_COLS), sizeof(trialRow), check_trial, trial_key,
+           trial_name, rs);
   conds tests = {{0}, 0};
   for (int i = 0; i < rs->n; i++) cond_add(&tests, ROW(rs, trialRow, i)->test);
   const char *test = pick_test(o->pos[1], o->test, &tests);
@@ -620,11 +777,14 @@ static comparisons compare_all(const opts *o, rows *rs) {
   for (int i = 0; i < rs->n; i++)
     if (!strcmp(ROW(rs, trialRow, i)->test, test)) cond_add(&c, ROW(rs, trialRow, i)->cond);
   cond_order(&c);
+  int ng;
+  group *g = groups_of(rs, &ng);
   comparisons out = {NULL, 0};
   for (int v = 0; v < c.n; v++) {
     char base[NAME_LEN];
-    if (base_of(c.name[v], base)) compare_condition(o, rs, test, base, c.name[v], &out);
+    if (base_of(c.name[v], base)) compare_condition(o, rs, g, ng, test, base, c.name[v], &out);
   }
+  free(g);
   if (!out.n)
     app_die(prog, "%s: no condition NAME0 in test %s (expected the caretaker variant of a self "
             "talk condition, e.g. ST-CT0 beside ST-CT)", o->pos[1], test);
@@ -637,16 +797,12 @@ static void seconds(char *buf, size_t n, double steps, int succ, double dt) {
   else buf[0] = 0;
 }
 
-static double control_dt(const opts *o) {
-  stConfig cfg;
-  app_config_resolve(&o->config, &cfg, prog);
-  return cfg.robot_control_dt;
-}
-
 static int cmd_selftalk(const opts *o) {
   rows rs;
+  stConfig cfg;
+  trial_tables(o, &cfg);
   const comparisons cs = compare_all(o, &rs);
-  const double dt = control_dt(o);
+  const double dt = cfg.robot_control_dt;
   printf("condition,caretaker_condition,run,individual,excluded,selftalk_pct,caretaker_pct,U,p,"
          "method,better,selftalk_seconds,caretaker_seconds\n");
   for (int i = 0; i < cs.n; i++) {
@@ -660,7 +816,7 @@ static int cmd_selftalk(const opts *o) {
            c->r.method == ST_MWU_EXACT ? "exact" : "normal", c->better, s0, s1);
   }
   free(cs.c);
-  free(rs.data);
+  rows_free(&rs);
   return 0;
 }
 
@@ -682,8 +838,10 @@ static void times_rows(const comparisons *cs, int n, double dt) {
 
 static int cmd_times(const opts *o) {
   rows rs;
+  stConfig cfg;
+  trial_tables(o, &cfg);
   const comparisons cs = compare_all(o, &rs);
-  const double dt = control_dt(o);
+  const double dt = cfg.robot_control_dt;
   printf("# %s: mean seconds to the target over the successful trials ((reached_step + 1) x %g s), "
          "the individuals significantly better with self talk (p <= %g)\n\n", o->pos[1], dt,
          o->alpha);
@@ -697,7 +855,7 @@ static int cmd_times(const opts *o) {
     times_rows(&cs, n, dt);
   }
   free(cs.c);
-  free(rs.data);
+  rows_free(&rs);
   return 0;
 }
 

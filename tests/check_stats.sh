@@ -215,6 +215,55 @@ head -2 "$FX/trials.csv" > "$tmp/t3"; echo 'generalisation,ST0,1,0,0,-1,49,0,0,n
 fails "trials: cell out of the grid" "$tmp/t3:3: type -1, cell 49, posture 0" "$ST" selftalk "$tmp/t3"
 grep -v ',ST-CT0,\|,ST0,' "$FX/trials.csv" > "$tmp/t4"
 fails "trials: no caretaker variant" "$tmp/t4: no condition NAME0 in test generalisation" "$ST" times "$tmp/t4"
+# the same individual or trial twice, a test posteval has not, a failed trial with a step, a
+# trial outside its test's table (posteval.* keys: the thesis's unless --config / --set)
+head -2 "$FX/summary.csv" > "$tmp/s8"; sed -n 2p "$FX/summary.csv" >> "$tmp/s8"
+fails "summary: an individual twice" "$tmp/s8:3: test integration condition incremental run 0 individual 0 twice (first at line 2; expected each once)" "$ST" describe "$tmp/s8"
+head -1 "$FX/summary.csv" > "$tmp/s9"; echo "robustnes,ST,1,0,5,40,0,0" >> "$tmp/s9"
+fails "summary: an unknown test" "$tmp/s9:2: test 'robustnes' (expected integration, robustness or generalisation)" "$ST" table "$tmp/s9"
+head -1 "$FX/trials.csv" > "$tmp/t5"; echo 'generalisaton,ST0,1,0,0,-1,0,0,0,none,0,-1,0' >> "$tmp/t5"
+fails "trials: an unknown test" "$tmp/t5:2: test 'generalisaton' (expected integration, robustness or generalisation)" "$ST" selftalk "$tmp/t5"
+head -3 "$FX/trials.csv" > "$tmp/t6"; sed -n 2p "$FX/trials.csv" >> "$tmp/t6"
+fails "trials: a trial twice" "$tmp/t6:4: test generalisation condition ST-CT run 0 individual 0 trial 0 twice (first at line 2; expected each once)" "$ST" selftalk "$tmp/t6"
+head -2 "$FX/trials.csv" > "$tmp/t7"; echo 'generalisation,ST0,1,0,0,-1,0,0,0,caretaker,0,17,0' >> "$tmp/t7"
+fails "trials: a failed trial with a reached step" "$tmp/t7:3: success 0 with reached_step 17 (expected -1" "$ST" selftalk "$tmp/t7"
+head -2 "$FX/trials.csv" > "$tmp/t8"; echo 'generalisation,ST0,1,0,1960,-1,0,0,0,caretaker,0,-1,0' >> "$tmp/t8"
+fails "trials: a trial beyond the generalisation test" "$tmp/t8:3: trial 1960 (expected 0..1959: the generalisation test has 1960 trials" "$ST" selftalk "$tmp/t8"
+head -2 "$FX/trials.csv" > "$tmp/t9"; echo 'robustness,ST0,1,0,40,0,-1,0,10,caretaker,0,-1,0' >> "$tmp/t9"
+fails "trials: a trial beyond the robustness test" "$tmp/t9:3: trial 40 (expected 0..39: the robustness test has 40 trials" "$ST" selftalk "$tmp/t9" --test robustness
+fails "trials: --set posteval.robustness_trials=41 takes trial 40" "$tmp/t9: no condition NAME0 in test generalisation" "$ST" selftalk "$tmp/t9" --set posteval.robustness_trials=41 --test generalisation
+head -2 "$FX/trials.csv" > "$tmp/t10"; echo 'generalisation,ST0,1,0,41,-1,0,0,1,caretaker,0,-1,0' >> "$tmp/t10"
+fails "trials: a row that is not its trial's" "$tmp/t10:3: trial 41 with type -1, cell 0, posture 0, repetition 1 (expected type -1, cell 1, posture 0, repetition 1: the generalisation test's trial table)" "$ST" selftalk "$tmp/t10"
+
+# ---- many individuals (the comparison is O(n log n): sorted once, each individual found by
+# binary search): 600 individuals' 48,000 trials in a shuffled order give the rows of the file
+# in order, and each individual alone gives its own row
+python3 - "$tmp/many.csv" "$tmp/many_shuf.csv" "$tmp/one.csv" <<'PY'
+import random, sys
+rng = random.Random(24)
+head = "test,condition,run,individual,trial,type,cell,posture,repetition,words,success,reached_step,open_jumped"
+rows = []
+for run in range(60):
+    for ind in range(10):
+        for cond, words, p in (("ST", "selftalk", rng.random()), ("ST0", "caretaker", rng.random())):
+            for t in range(40):
+                ok = int(rng.random() < p)
+                rows.append(f"robustness,{cond},{run},{ind},{t},{t % 4},-1,{t % 4},{t // 4},{words},{ok},{rng.randrange(240) if ok else -1},0")
+open(sys.argv[1], "w").write(head + "\n" + "\n".join(rows) + "\n")
+one = [r for r in rows if r.startswith("robustness,ST,37,4,") or r.startswith("robustness,ST0,37,4,")]
+open(sys.argv[3], "w").write(head + "\n" + "\n".join(one) + "\n")
+rng.shuffle(rows)
+open(sys.argv[2], "w").write(head + "\n" + "\n".join(rows) + "\n")
+PY
+"$ST" selftalk "$tmp/many.csv" > "$tmp/m1" 2>&1; r1=$?
+"$ST" selftalk "$tmp/many_shuf.csv" > "$tmp/m2" 2>&1; r2=$?
+"$ST" selftalk "$tmp/one.csv" > "$tmp/m3" 2>&1; r3=$?
+if [ $r1 = 0 ] && [ $r2 = 0 ] && [ $r3 = 0 ] && [ "$(wc -l < "$tmp/m1")" = 601 ] &&
+   [ "$(sort "$tmp/m1")" = "$(sort "$tmp/m2")" ] && grep -qxF "$(sed -n 2p "$tmp/m3")" "$tmp/m1" &&
+   [ "$(sed -n 2p "$tmp/m1" | cut -d, -f1-4)" = "ST,ST0,0,0" ]; then
+  ok "selftalk: 600 individuals, in file order, the same shuffled, each as alone"
+else ko "selftalk: many individuals" "$r1 $r2 $r3 $(head -3 "$tmp/m1") / $(head -3 "$tmp/m3")"; fi
+
 fails "trials: a summary file is not a trials file" "summary.csv:1: not the header (expected the header test,condition,run,individual,trial,type" "$ST" selftalk "$FX/summary.csv"
 
 echo "$CHECK: $pass passed, $fail failed"

@@ -155,10 +155,10 @@ $(OUT)/stats/table_3_2.txt: $(OUT)/summary/generalisation.csv
 	$(STATS) table $< --test generalisation > $@.tmp && mv $@.tmp $@
 $(OUT)/stats/selftalk.csv: $(OUT)/summary/generalisation-trials.csv
 	@mkdir -p $(@D)
-	$(STATS) selftalk $< > $@.tmp && mv $@.tmp $@
+	$(STATS) selftalk $< $(GEN_ARGS) > $@.tmp && mv $@.tmp $@
 $(OUT)/stats/table_3_3.txt: $(OUT)/summary/generalisation-trials.csv
 	@mkdir -p $(@D)
-	$(STATS) times $< > $@.tmp && mv $@.tmp $@
+	$(STATS) times $< $(GEN_ARGS) > $@.tmp && mv $@.tmp $@
 $(OUT)/stats/%.txt: $(OUT)/summary/%.csv
 	@mkdir -p $(@D)
 	$(STATS) describe $< --test $* > $@.tmp && mv $@.tmp $@

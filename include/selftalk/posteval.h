@@ -84,6 +84,11 @@ typedef struct stPostTrial {
  * offset. */
 void st_post_trial(const stPostDef *def, const stScene *scene, int i, stPostTrial *trial);
 
+/* What st_post_trial fills without the scene: index, type, cell, posture, repetition, target,
+ * steps (the positions 0). The one layout of the trial tables: ./apps/stats checks the rows of
+ * a trials.csv against it. */
+void st_post_trial_layout(const stPostDef *def, int i, stPostTrial *trial);
+
 /* Centre (x, y) of cell c = row * cells + column, the row along x (0 nearest the robot), the
  * column along y (0 the most negative y, the robot's right): centre + ((row, column) -
  * (cells - 1) / 2) cell_size. */

@@ -59,25 +59,34 @@ void st_post_cell_center(const stPostDef *d, int cell, double xy[2]) {
   xy[1] = d->center[1] + (cell % d->cells - mid) * d->cell_size; /* column: along y */
 }
 
-/* integration, robustness: the integrated stage's types, fresh offsets */
+void st_post_trial_layout(const stPostDef *d, int i, stPostTrial *t) {
+  memset(t, 0, sizeof *t);
+  t->index = i;
+  t->steps = d->steps;
+  if (d->test == ST_POST_GENERALISATION) { /* a cell of the grid with each posture */
+    const int per_cell = ST_NPOSTURE * d->repetitions;
+    t->type = -1;
+    t->cell = i / per_cell;
+    t->posture = i % per_cell / d->repetitions;
+    t->repetition = i % d->repetitions;
+    t->target = ST_TARGET_GENERAL;
+  } else { /* integration, robustness: the integrated stage's types */
+    const int k = i % ST_NPOSTURE;
+    t->type = t->posture = k;
+    t->cell = -1;
+    t->repetition = i / ST_NPOSTURE;
+    t->target = k % 2;
+  }
+}
+
+/* integration, robustness: fresh offsets */
 static void trained_trial(const stScene *s, stRng *rng, stPostTrial *t) {
-  const int k = t->index % ST_NPOSTURE;
-  t->type = t->posture = k;
-  t->cell = -1;
-  t->repetition = t->index / ST_NPOSTURE;
-  t->target = k % 2;
-  st_scene_object(s, k, 1, rng, t->obj);       /* x/y offset, */
+  st_scene_object(s, t->type, 1, rng, t->obj);       /* x/y offset, */
   st_scene_target(s, t->target, rng, t->target_pos); /* then the target's x/y/z */
 }
 
-/* generalisation: a cell of the grid with each posture, the one target */
+/* generalisation: the cell's centre with an offset, the one target */
 static void grid_trial(const stPostDef *d, const stScene *s, stRng *rng, stPostTrial *t) {
-  const int per_cell = ST_NPOSTURE * d->repetitions;
-  t->type = -1;
-  t->cell = t->index / per_cell;
-  t->posture = t->index % per_cell / d->repetitions;
-  t->repetition = t->index % d->repetitions;
-  t->target = ST_TARGET_GENERAL;
   double xy[2];
   st_post_cell_center(d, t->cell, xy);
   t->obj[0] = xy[0] + st_rng_range(rng, -d->offset, d->offset);
@@ -87,9 +96,7 @@ static void grid_trial(const stPostDef *d, const stScene *s, stRng *rng, stPostT
 }
 
 void st_post_trial(const stPostDef *d, const stScene *s, int i, stPostTrial *t) {
-  memset(t, 0, sizeof *t);
-  t->index = i;
-  t->steps = d->steps;
+  st_post_trial_layout(d, i, t);
   stRng rng = st_rng_keyed(d->seed, ST_RNG_POSTEVAL, (uint64_t)d->test, 0, (uint64_t)i);
   t->solver_key = st_rng_keyed(d->seed, ST_RNG_POSTEVAL_SOLVER, (uint64_t)d->test, 0, (uint64_t)i).key;
   if (d->test == ST_POST_GENERALISATION) grid_trial(d, s, &rng, t);
