@@ -220,8 +220,9 @@ FUZZ_CXX ?= clang++
 FUZZ_DIR := build-fuzz
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_FLAGS := -g -O1 $(FUZZ_SAN) -fsanitize=fuzzer-no-link
-FUZZ_TARGETS := config genome urdf checkpoint
-FUZZ_LIB := core/base core/rng core/config core/genome run/checkpoint model/model model/model_urdf
+FUZZ_TARGETS := config genome urdf checkpoint journal score stats
+# the library but its two OpenMP modules (evolution, the parallel post-evaluation)
+FUZZ_LIB := $(filter-out run/evolve posteval/postrun,$(patsubst lib/%,%,$(basename $(CORE_SRC) $(SIM_SRC))))
 FUZZ_OBJ := $(FUZZ_LIB:%=$(FUZZ_DIR)/obj/%.o)
 FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
 FUZZ_RUNS ?= 1000000
@@ -240,8 +241,12 @@ $(FUZZ_DIR)/obj/%.o: lib/%.cpp $(HEADERS)
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(CPPFLAGS_ALL) -std=c++17 -Wall -Wextra $(FUZZ_FLAGS) -c $< -o $@
 
+# the apps' readers (score, stats) are fuzzed in the app's own source, included by the target
+$(FUZZ_DIR)/fuzz_score: apps/score.c tests/fuzz/app_shim.h
+$(FUZZ_DIR)/fuzz_stats: apps/stats.c tests/fuzz/app_shim.h
+
 $(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_OBJ) $(HEADERS)
-	$(FUZZ_CC) $(CPPFLAGS_ALL) -std=c99 $(WARN) $(FUZZ_FLAGS) -c $< -o $@.o
+	$(FUZZ_CC) $(CPPFLAGS_ALL) -Iapps -std=c99 $(WARN) $(FUZZ_FLAGS) -c $< -o $@.o
 	$(FUZZ_CXX) -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $@.o $(FUZZ_OBJ) $(LIBS_SIM) $(LIBS_CORE)
 
 # seeds: the shipped configs, genomes and URDF, a short run's checkpoint with its files, and
@@ -252,6 +257,9 @@ FUZZ_SEEDS_config := configs/*.cfg
 FUZZ_SEEDS_genome := data/evolved/*.genome data/evolved/*/population.genome tests/golden/*.genome
 FUZZ_SEEDS_urdf := data/*.urdf tests/fuzz/seeds/urdf/*
 FUZZ_SEEDS_checkpoint := tests/fuzz/seeds/checkpoint/*
+FUZZ_SEEDS_journal := tests/fuzz/seeds/journal/*
+FUZZ_SEEDS_score := tests/fuzz/seeds/score/*
+FUZZ_SEEDS_stats := tests/fuzz/seeds/stats/*
 $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 	@mkdir -p $(@D)
 	@for f in $(wildcard $(FUZZ_SEEDS_$*) tests/fuzz/regressions/$*/*); do \
