@@ -212,7 +212,9 @@ fails "trials: unknown words" "$tmp/t1:3: words 'talk' (expected none, caretaker
 head -2 "$FX/trials.csv" > "$tmp/t2"; echo 'generalisation,ST0,1,0,0,-1,0,0,0,none,1,-1,0' >> "$tmp/t2"
 fails "trials: a success that never reached" "$tmp/t2:3: success 1 with reached_step -1" "$ST" selftalk "$tmp/t2"
 head -2 "$FX/trials.csv" > "$tmp/t3"; echo 'generalisation,ST0,1,0,0,-1,49,0,0,none,0,-1,0' >> "$tmp/t3"
-fails "trials: cell out of the grid" "$tmp/t3:3: type -1, cell 49, posture 0" "$ST" selftalk "$tmp/t3"
+fails "trials: cell out of the grid" "$tmp/t3:3: trial 0 with type -1, cell 49, posture 0, repetition 0 (expected type -1, cell 0, posture 0, repetition 0" "$ST" selftalk "$tmp/t3"
+head -2 "$FX/trials.csv" > "$tmp/t3b"; echo 'generalisation,ST0,1,0,0,-1,0,0,0,none,2,-1,0' >> "$tmp/t3b"
+fails "trials: success 2" "$tmp/t3b:3: success 2, open_jumped 0 (expected 0 or 1)" "$ST" selftalk "$tmp/t3b"
 grep -v ',ST-CT0,\|,ST0,' "$FX/trials.csv" > "$tmp/t4"
 fails "trials: no caretaker variant" "$tmp/t4: no condition NAME0 in test generalisation" "$ST" times "$tmp/t4"
 # the same individual or trial twice, a test posteval has not, a failed trial with a step, a
