@@ -396,6 +396,7 @@ static void check_test(const textFile *t, const char *test) {
 }
 
 /* the tests' trial tables (posteval.* keys of --config / --set: the defaults are the thesis's) */
+#define KEYS_HINT "posteval.* keys from --config (the test's config.ini) or --set"
 static stPostDef g_def[ST_POST_NTESTS];
 
 static void check_sum(const textFile *t, const void *row) {
@@ -424,14 +425,14 @@ static void check_trial(const textFile *t, const void *row) {
   check_test(t, r->test);
   const stPostDef *d = &g_def[st_post_test_parse(r->test)];
   if (r->trial >= d->trials)
-    app_die(prog, "%s:%d: trial %d (expected 0..%d: the %s test has %d trials; posteval.* keys "
-            "from --config / --set)", t->path, t->lineno, r->trial, d->trials - 1, r->test,
-            d->trials);
+    app_die(prog, "%s:%d: trial %d (expected 0..%d: the %s test has %d trials; " KEYS_HINT ")",
+            t->path, t->lineno, r->trial, d->trials - 1, r->test, d->trials);
   stPostTrial l;
   st_post_trial_layout(d, r->trial, &l);
   if (r->type != l.type || r->cell != l.cell || r->posture != l.posture || r->rep != l.repetition)
     app_die(prog, "%s:%d: trial %d with type %d, cell %d, posture %d, repetition %d (expected "
-            "type %d, cell %d, posture %d, repetition %d: the %s test's trial table)", t->path,
+            "type %d, cell %d, posture %d, repetition %d: the %s test's trial table; " KEYS_HINT
+            ")", t->path,
             t->lineno, r->trial, r->type, r->cell, r->posture, r->rep, l.type, l.cell, l.posture,
             l.repetition, r->test);
 }

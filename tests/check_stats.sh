@@ -235,7 +235,7 @@ head -2 "$FX/trials.csv" > "$tmp/t9"; echo 'robustness,ST0,1,0,40,0,-1,0,10,care
 fails "trials: a trial beyond the robustness test" "$tmp/t9:3: trial 40 (expected 0..39: the robustness test has 40 trials" "$ST" selftalk "$tmp/t9" --test robustness
 fails "trials: --set posteval.robustness_trials=41 takes trial 40" "$tmp/t9: no condition NAME0 in test generalisation" "$ST" selftalk "$tmp/t9" --set posteval.robustness_trials=41 --test generalisation
 head -2 "$FX/trials.csv" > "$tmp/t10"; echo 'generalisation,ST0,1,0,41,-1,0,0,1,caretaker,0,-1,0' >> "$tmp/t10"
-fails "trials: a row that is not its trial's" "$tmp/t10:3: trial 41 with type -1, cell 0, posture 0, repetition 1 (expected type -1, cell 1, posture 0, repetition 1: the generalisation test's trial table)" "$ST" selftalk "$tmp/t10"
+fails "trials: a row that is not its trial's" "$tmp/t10:3: trial 41 with type -1, cell 0, posture 0, repetition 1 (expected type -1, cell 1, posture 0, repetition 1: the generalisation test's trial table; posteval.* keys from --config" "$ST" selftalk "$tmp/t10"
 
 # ---- many individuals (the comparison is O(n log n): sorted once, each individual found by
 # binary search): 600 individuals' 48,000 trials in a shuffled order give the rows of the file
