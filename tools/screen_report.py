@@ -38,20 +38,25 @@ def integration(d):
 
 
 def cost(d):
-    """seconds per generation from the last progress line's elapsed time, or None"""
+    """seconds per generation over the progress log's sessions (each resumed run's elapsed time
+    counts from its own start, and its generations from the one it resumed at), or None"""
     path = os.path.join(d, "progress.log")
     if not os.path.exists(path):
         return None
-    last = None
+    sessions, first, last, sec = [], None, None, 0
     for line in open(path, errors="replace"):
+        if line.startswith("evolve: ") and ", output in " in line:  # a (re)started run
+            sessions.append((first, last, sec))
+            first, last, sec = None, None, 0
         m = re.match(r"gen\s+(\d+) .*elapsed (\d+):(\d\d):(\d\d)", line)
         if m:
-            last = m
-    if not last:
-        return None
-    g = int(last.group(1)) + 1
-    sec = int(last.group(2)) * 3600 + int(last.group(3)) * 60 + int(last.group(4))
-    return sec / g
+            last = int(m.group(1))
+            if first is None:
+                first = last if sessions else 0  # a fresh run's first session starts at 0
+            sec = int(m.group(2)) * 3600 + int(m.group(3)) * 60 + int(m.group(4))
+    sessions.append((first, last, sec))
+    gens = sum(l - f + 1 for f, l, _ in sessions if f is not None)
+    return sum(s for f, _, s in sessions if f is not None) / gens if gens else None
 
 
 def row(d):
