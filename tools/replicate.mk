@@ -76,7 +76,7 @@ STATS_OUT := $(OUT)/stats/table_3_1.txt $(OUT)/stats/table_3_2.txt $(OUT)/stats/
   $(OUT)/stats/selftalk.csv
 REPORT := $(OUT)/report.md
 
-.PHONY: all prims integration integrated robustness generalisation stats figures report jobs
+.PHONY: FORCE all prims integration integrated robustness generalisation stats figures report jobs
 .DELETE_ON_ERROR:
 # a step's files stay when a later step fails: they are results
 .SECONDARY:
@@ -99,16 +99,21 @@ report: $(REPORT)
 jobs:
 	@$(if $(filter prims,$(STEP)),printf '%s\n' $(PRIM_POPS),$(if $(filter integrated,$(STEP)),printf '%s\n' $(INT_POPS),$(if $(filter robustness,$(STEP)),printf '%s\n' $(POST_ROB),$(if $(filter generalisation,$(STEP)),printf '%s\n' $(POST_GEN),echo "jobs: STEP=prims, integrated, robustness or generalisation" >&2; exit 2))))
 
-# ---- evolution: --resume continues a killed run to the identical files (or starts it)
-$(OUT)/prims-s%/population.genome:
+# ---- evolution: --resume continues a killed run to the identical files (or starts it). It
+# runs every time (FORCE): evolve writes population.genome before its last checkpoint, so a run
+# stopped between the two has its population but not its end; evolve --resume finishes it, and
+# says "complete" (writing nothing, so nothing after it is redone) for a run that is
+$(OUT)/prims-s%/population.genome: FORCE
 	@mkdir -p $(OUT)
-	$(EVOLVE) configs/prims.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(PRIM_ARGS) > $(@D).log
+	$(EVOLVE) configs/prims.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(PRIM_ARGS) >> $(@D).log
 
 # every integrated run starts from the same assembled genotypes: the top 10 of each primitive run
-$(OUT)/int-%/population.genome: $(PRIM_POPS)
+$(OUT)/int-%/population.genome: $(PRIM_POPS) FORCE
 	$(EVOLVE) configs/integrated_$(word 1,$(subst -s, ,$*)).cfg --seed $(lastword $(subst -s, ,$*)) \
 	  --out $(@D) --resume $(THREADS_ARG) $(INT_ARGS) \
-	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIM_POPS))) > $(@D).log
+	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIM_POPS))) >> $(@D).log
+
+FORCE:
 
 
 # ---- post-evaluation (each writes DIR/trials.csv and DIR/summary.csv atomically; --resume
