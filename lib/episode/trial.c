@@ -58,7 +58,7 @@ static void handover_spec(const stProtocol *p, int j, stTrialSpec *t) {
   st_scene_object(&p->scene, t->k, 1, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
   t->steps = main_steps(c, t->primitive);
-  t->table_off_step = t->primitive == ST_PRIM_GRASP ? c->stage_grasp_table_off_step : -1;
+  t->table_off_step = t->primitive == ST_PRIM_MOVE ? -1 : main_table_off(c, t->primitive);
 }
 
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
