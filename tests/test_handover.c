@@ -30,14 +30,19 @@ static stProtocol *protocol(int handover, int rollin) {
   return p;
 }
 
-static int evolved_net(stNetParams *np) {
+static int evolved_net_at(stNetParams *np, int index);
+static int evolved_net(stNetParams *np) { return evolved_net_at(np, 0); }
+
+/* genotype `index` of that population (best first) */
+static int evolved_net_at(stNetParams *np, int index) {
   stGenomeSet set;
   char err[512] = "";
   if (st_genome_set_read(EVOLVED, st_arch_ngenes(ST_ARCH_BASE), &set, err, sizeof err)) {
     fprintf(stderr, "%s\n", err);
     return 0;
   }
-  const int ok = st_net_decode(NULL, ST_ARCH_BASE, &set.genome[0], np, err, sizeof err) == ST_OK;
+  const int ok = index < set.count &&
+                 st_net_decode(NULL, ST_ARCH_BASE, &set.genome[index], np, err, sizeof err) == ST_OK;
   st_genome_set_free(&set);
   return ok;
 }
@@ -351,6 +356,74 @@ static void test_chain_fitness(void) {
   st_protocol_destroy(off);
 }
 
+/* stage.chain_combine = sum: F is the harmonic mean of the four F_p (those of the protocol
+ * without chained trials) plus (fixed trials solved / 16)^chain_gate times F_chain, and
+ * F_chain is eq. 2.14 plus chain_progress times the mean over the chained trials of the
+ * furthest word the caretaker said (reach 0 .. move 3), read here from each trial's trace. */
+static void test_chain_sum(void) {
+  stConfig c;
+  st_config_default(&c);
+  c.stage_stages = ST_STAGES_MAIN;
+  stProtocol *off = NULL, *p = NULL;
+  char err[512] = "";
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &off, err, sizeof err), ST_OK);
+  c.stage_chain_trials = 3;
+  c.stage_chain_combine = ST_CHAIN_SUM;
+  c.stage_chain_gate = 2.0;
+  c.stage_chain_progress = 10.0;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
+  stNetParams np; /* a genotype that fails some fixed trials, so that the gate weighs */
+  CU_ASSERT_FATAL(evolved_net_at(&np, 60));
+  stWorkspace ws = {NULL, NULL};
+  const int gen = 2, ind = 3;
+  stEvaluation e, e0;
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
+  stIntegratedDef def;
+  st_chain_def_from_config(&p->cfg, &def);
+  double bonus = 0.0, points = 0.0, furthest = 0.0;
+  for (int i = 0; i < 3; i++) {
+    stIntPlan plan;
+    stIntTrialResult r;
+    rec *t = calloc(1, sizeof *t);
+    CU_ASSERT_FATAL(t != NULL);
+    CU_ASSERT_EQUAL_FATAL(st_int_trial_run(p, &def, &ws, gen, ind, i, &np, &plan, &r, NULL, on_step,
+                                           t, err, sizeof err), ST_OK);
+    int far = 0;
+    for (int k = 0; k < t->n; k++) far = t->word[k] > far ? t->word[k] : far;
+    furthest += far;
+    bonus += 10.0 * (r.success + r.focus_bonus);
+    points += fmax(0.0, r.sum_s - r.sum_p);
+    free(t);
+  }
+  CU_ASSERT(furthest > 0.0); /* the term is not empty here */
+  const double f_chain = bonus + 100.0 / (3.0 * 240.0) * points + 10.0 * furthest / 3.0;
+  CU_ASSERT_DOUBLE_EQUAL(e.f_chain, f_chain, 1e-9 * f_chain);
+  int solved = 0;
+  double inv = 0.0;
+  for (int i = 0; i < 16; i++) solved += e0.success[i];
+  for (int k = 0; k < 4; k++) inv += 1.0 / e0.fp[k];
+  const double w = (solved / 16.0) * (solved / 16.0);
+  CU_ASSERT(solved > 0 && solved < 16);
+  CU_ASSERT_DOUBLE_EQUAL(e.fitness, 4.0 / inv + w * f_chain, 1e-9 * e.fitness);
+  /* the gate and the progress weight act only where they shape something */
+  st_config_default(&c);
+  c.stage_chain_progress = 5.0;
+  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "expected stage.chain_trials > 0");
+  c.stage_chain_trials = 2;
+  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  c.stage_chain_gate = 4.0;
+  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "stage.chain_gate");
+  ST_ASSERT_CONTAINS(err, "expected stage.chain_combine = sum");
+  c.stage_chain_combine = ST_CHAIN_SUM;
+  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+  st_protocol_destroy(off);
+}
+
 /* The keys: the roll-in length acts only with stage.handover; the caretaker's keys are read by
  * main-prim only when its hand-over trials hear the caretaker; stage.handover by main-prim
  * only. */
@@ -388,4 +461,5 @@ void st_suite_handover(void) {
   ST_ADD_TEST(test_handover_fitness);
   ST_ADD_TEST(test_handover_keys);
   ST_ADD_TEST(test_chain_fitness);
+  ST_ADD_TEST(test_chain_sum);
 }

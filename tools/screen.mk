@@ -29,7 +29,12 @@ KEYS_handover := --set stage.handover=true
 KEYS_handover_fallback := --set stage.handover=true --set stage.handover_fallback=true
 KEYS_chain := --set stage.chain_trials=8
 KEYS_handover_chain := --set stage.handover=true --set stage.chain_trials=8
-CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain
+CHAIN_SUM := --set stage.chain_trials=8 --set stage.chain_combine=sum --set stage.chain_progress=10
+KEYS_chain_sum := $(CHAIN_SUM)
+KEYS_chain_gated := $(CHAIN_SUM) --set stage.chain_gate=8
+KEYS_handover_chain_gated := --set stage.handover=true $(CHAIN_SUM) --set stage.chain_gate=8
+CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
+  chain_gated handover_chain_gated
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
 $(error CAND=$(CAND): expected one of $(CANDIDATES))

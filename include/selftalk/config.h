@@ -106,7 +106,10 @@ extern "C" {
   INT(stage, grasp_table_off_step, 40, 0, 100000, "main-prim grasp: object-table collision off after this many steps") \
   INT(stage, move_table_off_step, 10, 0, 100000, "main-prim move: object-table collision off after this many steps") \
   BOOL(stage, handover, 0, "main-prim adds 12 hand-over trials: open, grasp, move from where the caretaker hands over to each in the individual's own chain (SPEC 12, docs/PROTOCOL.md; not the thesis's); false: its 16") \
-  INT(stage, chain_trials, 0, 0, 32, "main-prim adds this many chained trials (the integrated stage's table, the caretaker's words) scored by eq. 2.14 as a 5th term of the harmonic mean (SPEC 12; 0: the thesis)") \
+  INT(stage, chain_trials, 0, 0, 32, "main-prim adds this many chained trials (the integrated stage's table, the caretaker's words) scored by eq. 2.14 into F_chain (SPEC 12; 0: the thesis)") \
+  ENUM(stage, chain_combine, 0, "harmonic|sum", "how F_chain joins main-prim's F: harmonic, a 5th term of the harmonic mean; sum, added to the harmonic mean of the four F_p, weighted by chain_gate (docs/PROTOCOL.md)") \
+  REAL(stage, chain_gate, 0.0, 0.0, 64.0, "chain_combine = sum: F_chain is weighted by (fixed trials solved / 16)^chain_gate, so that selection keeps the thesis's 16 trials solved; 0: unweighted") \
+  REAL(stage, chain_progress, 0.0, 0.0, 1000.0, "F_chain adds this times the mean of how far the caretaker got in the chained trials (reach 0 .. move 3): a shaping term, not the thesis's (docs/PROTOCOL.md); 0: eq. 2.14 alone") \
   BOOL(stage, handover_fallback, 0, "a hand-over trial whose chain never hands over: true, runs from the fixed posture; false, scores 0 over its length (a fallback it solves would reward a chain that breaks)") \
   INT(stage, handover_rollin_steps, 170, 1, 100000, "hand-over trials: the caretaker must hand over within this many steps of the chain (integrated.steps 240 less main-prim move's 70); else see handover_fallback") \
   INT(caretaker, grasp_touches, 3, 1, 6, "the caretaker considers a grasp done when this many touch sensors touch the object (thesis 2.9.3)") \
@@ -274,6 +277,8 @@ unsigned st_config_primitive_mask(const stConfig *cfg);
 enum { ST_STAGES_SIMPLE = 0, ST_STAGES_MAIN, ST_STAGES_PRIMS, ST_STAGES_INTEGRATED };
 enum { ST_CFG_WORDS_NONE = 0, ST_CFG_WORDS_CARETAKER, ST_CFG_WORDS_SELFTALK };
 enum { ST_CFG_FIT_INTEGRATED = 0, ST_CFG_FIT_PREDICTION };
+/* stage.chain_combine */
+enum { ST_CHAIN_HARMONIC = 0, ST_CHAIN_SUM };
 
 /* Choice name of an ENUM key's value, e.g. st_config_enum_name("network", "arch", 1) = "A". */
 const char *st_config_enum_name(const char *section, const char *name, int value);

@@ -85,6 +85,8 @@ typedef struct stIntTrialResult {
                             lifted at the end (main-prim move's condition; the move bonus) */
   int focus_bonus;       /* lifted with the focus on the target for focus_bonus_steps */
   int opened;            /* the open success condition held at some step */
+  int furthest_word;     /* the furthest primitive (ST_PRIM_*) whose word was heard, -1 none:
+                            with the caretaker's words, how far its chain got */
   stTrialEnd end;
   int unstable;
 } stIntTrialResult;
@@ -131,6 +133,7 @@ typedef struct stIntEvaluation {
   int successes;               /* trials whose object was moved to the target */
   uint8_t success[ST_INT_MAX_TRIALS];
   int unstable;
+  double progress;             /* mean over the trials of max(0, furthest_word) (0..3) */
 } stIntEvaluation;
 
 /* Combines n trials (bonus: fitness.bonus, scale: fitness.scale): plan[i], result[i] and, for

@@ -127,7 +127,7 @@ static const stageKey g_stage_keys[] = {
     {"stage", "grasp_table_off_step", M_, "only main-prim grasp trials remove the table", "a post-evaluation runs integrated trials"},
     {"stage", "move_table_off_step", M_, "only main-prim move trials remove the table", "a post-evaluation runs integrated trials"},
     {"stage", "handover*", M_, "only main-prim has hand-over trials", "a post-evaluation runs integrated trials"},
-    {"stage", "chain_trials", M_, "only main-prim has chained trials", "a post-evaluation runs integrated trials"},
+    {"stage", "chain_*", M_, "only main-prim has chained trials", "a post-evaluation runs integrated trials"},
     {"fitness", "penalty_object", S_ | M_, "the integrated stage's penalty is the table's and the "
                                            "object-moving one (eq. 2.14)", NO_FITNESS},
     {"fitness", "fp_min", S_ | M_, "only the primitive stages take the harmonic mean of F_p", NO_FITNESS},
@@ -485,7 +485,8 @@ static int is_default(const stConfig *c, const stConfig *d, const stConfigKey *k
 /* keys section.prefix* that shape what a switch key turns on: changed while it is off they
  * would do nothing; returns the key blamed or -1 */
 static int check_switched(const stConfig *c, int on, const char *section, const char *prefix,
-                          const char *what, const char *switch_key, char *msg, size_t n) {
+                          const char *what, const char *switch_key, const char *off,
+                          const char *on_value, char *msg, size_t n) {
   if (on) return -1;
   stConfig d;
   st_config_default(&d);
@@ -493,8 +494,8 @@ static int check_switched(const stConfig *c, int on, const char *section, const 
     const stConfigKey *k = &g_keys[i];
     if (strcmp(k->section, section) || strncmp(k->name, prefix, strlen(prefix)) || is_default(c, &d, k))
       continue;
-    snprintf(msg, n, "it shapes %s, which %s = false turns off (expected %s = true, or the key "
-             "left out)", what, switch_key, switch_key);
+    snprintf(msg, n, "it shapes %s, which %s = %s turns off (expected %s %s, or the key "
+             "left out)", what, switch_key, off, switch_key, on_value);
     return i;
   }
   return -1;
@@ -505,9 +506,14 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
   int k = check_integrated(c, msg, n);
   if (k >= 0) return k;
   if ((k = check_switched(c, c->postures_vary_starts, "postures", "vary_", "the drawn starts",
-                          "postures.vary_starts", msg, n)) >= 0 ||
+                          "postures.vary_starts", "false", "= true", msg, n)) >= 0 ||
       (k = check_switched(c, c->stage_handover, "stage", "handover_", "the hand-over trials",
-                          "stage.handover", msg, n)) >= 0)
+                          "stage.handover", "false", "= true", msg, n)) >= 0 ||
+      (k = check_switched(c, c->stage_chain_trials > 0, "stage", "chain_", "the chained trials",
+                          "stage.chain_trials", "0", "> 0", msg, n)) >= 0 ||
+      (k = check_switched(c, c->stage_chain_combine == ST_CHAIN_SUM, "stage", "chain_gate",
+                          "the summed F_chain", "stage.chain_combine", "harmonic", "= sum", msg,
+                          n)) >= 0)
     return k;
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "

@@ -58,6 +58,7 @@ static int int_step(void *self, stTraceStep *ts) {
                                       ts->pen_table, ts->pen_moving, ts->fell, ts->unstable,
                                       &ts->S, &ts->P);
   ts->success_now = ts->q->lifted && ts->q->d_m < s->p->fitness.target_radius;
+  if (ts->word > s->sc.r.furthest_word) s->sc.r.furthest_word = ts->word;
   record(s->rec, ts);
   return event;
 }

@@ -89,6 +89,7 @@ void st_int_score_begin(stIntScore *sc, const stFitnessDef *fd, double focus_thr
   sc->hold_steps = def->hold_steps;
   sc->focus_bonus_steps = def->focus_bonus_steps;
   sc->r.reached_step = -1;
+  sc->r.furthest_word = -1;
 }
 
 /* the bookkeeping of one step: opened, in the target, the focus bonus */
@@ -188,5 +189,6 @@ void st_int_combine(double bonus, double scale, const stIntPlan *plan,
     e->success[i] = (uint8_t)r[i].success;
     e->successes += r[i].success;
     e->unstable += r[i].unstable;
+    e->progress += (r[i].furthest_word > 0 ? r[i].furthest_word : 0) / (double)n;
   }
 }

@@ -324,7 +324,8 @@ static stStatus add_trial(const stProtocol *p, stWorkspace *ws, stStage stage, i
 }
 
 /* main-prim's chained trials: eq. 2.14 over the integrated stage's trials with the caretaker's
- * words; they count among the trials that completing the stage needs solved */
+ * words (plus stage.chain_progress times how far the caretaker got); they count among the
+ * trials that completing the stage needs solved */
 static stStatus chain_evaluate(const stProtocol *p, stWorkspace *ws, int generation,
                                int individual, const stNetParams *net, stEvaluation *e, char *err,
                                size_t errsz) {
@@ -333,7 +334,7 @@ static stStatus chain_evaluate(const stProtocol *p, stWorkspace *ws, int generat
   stIntEvaluation ie;
   stStatus st = st_int_evaluate(p, &def, ws, generation, individual, net, &ie, err, errsz);
   if (st) return st;
-  e->f_chain = ie.fitness;
+  e->f_chain = ie.fitness + p->cfg.stage_chain_progress * ie.progress;
   e->chain_trials = ie.ntrials;
   e->chain_successes = ie.successes;
   memcpy(e->chain_success, ie.success, sizeof e->chain_success);
@@ -341,6 +342,21 @@ static stStatus chain_evaluate(const stProtocol *p, stWorkspace *ws, int generat
   e->successes += ie.successes;
   e->unstable += ie.unstable;
   return ST_OK;
+}
+
+/* the fixed trials (the thesis's 16, or those of stage.primitives) evaluated */
+static int fixed_trials(const stProtocol *p) {
+  int n = 0;
+  for (int k = 0; k < ST_NPRIM; k++) n += (p->primitives >> k & 1u) ? ST_NPOSTURE : 0;
+  return n;
+}
+
+/* stage.chain_combine = sum: F_chain's weight, (fixed trials solved / fixed trials)^chain_gate,
+ * so that a chain bought with a fixed trial costs more than it earns (chain_gate 0: 1) */
+static double chain_weight(const stProtocol *p, const stEvaluation *e, int fixed) {
+  int solved = 0;
+  for (int i = 0; i < ST_PRIM_TRIALS; i++) solved += e->success[i];
+  return fixed ? pow((double)solved / fixed, p->cfg.stage_chain_gate) : 1.0;
 }
 
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
@@ -375,11 +391,14 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
     e->fp[k] = st_primitive_fitness(&p->fitness, sums.bonus[k], sums.sum_sp[k], sums.n[k]);
     if (p->primitives >> k & 1u) fp[nprim++] = e->fp[k];
   }
+  const int fixed = fixed_trials(p);
   if (stage == ST_STAGE_MAIN && p->cfg.stage_chain_trials > 0) {
     stStatus st = chain_evaluate(p, ws, generation, individual, net, e, err, errsz);
     if (st) return st;
-    fp[nprim++] = e->f_chain;
+    if (p->cfg.stage_chain_combine == ST_CHAIN_HARMONIC) fp[nprim++] = e->f_chain;
   }
   e->fitness = st_harmonic_fitness(&p->fitness, fp, nprim);
+  if (e->chain_trials && p->cfg.stage_chain_combine == ST_CHAIN_SUM)
+    e->fitness += chain_weight(p, e, fixed) * e->f_chain;
   return ST_OK;
 }
