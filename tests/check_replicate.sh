@@ -73,6 +73,24 @@ if [ -e "$tmp/finished" ] && [ -s "$tmp/d/prims-s1/population.genome" ] &&
   ok "stopped after a run's last checkpoint: its population.genome kept"
 else ko "stopped after a run's last checkpoint" "$(cat "$tmp/d.out")"; fi
 
+# PROTOCOL=chain: each primitive run continued by the chain stage (configs/chain_prim.cfg) from
+# its population, the same seed, and the integration test on those runs
+if $REP OUT="$tmp/a" PROTOCOL=chain chain > "$tmp/ch.out" 2>&1 &&
+   grep -q "^chain_trials = 2$" "$tmp/a/chain-s2/config.ini" &&
+   grep -q "^init_population = $tmp/a/prims-s2/population.genome$" "$tmp/a/chain-s2/config.ini" &&
+   grep -q "^seed = 2$" "$tmp/a/chain-s2/config.ini" && [ -s "$tmp/a/chain-s1/population.genome" ] &&
+   [ "$(head -1 "$tmp/a/chain-s1/fitness.csv" | grep -o 'best_c[0-9]*' | wc -l)" = 2 ]; then
+  ok "PROTOCOL=chain: the chain stage from each primitive run"
+else ko "PROTOCOL=chain" "$(tail -3 "$tmp/ch.out")"; fi
+if [ "$($REP jobs STEP=chain OUT=x PROTOCOL=chain | wc -l)" = 2 ] &&
+   $REP -n OUT="$tmp/a" PROTOCOL=chain "$tmp/a/posteval/integration/summary.csv" 2> /dev/null |
+   grep -q "posteval integration .*chain-s1/population.genome"; then
+  ok "PROTOCOL=chain: the integration test takes the chain runs"
+else ko "PROTOCOL=chain integration"; fi
+$REP OUT="$tmp/c" PROTOCOL=mine > /dev/null 2> "$tmp/e"
+if [ $? != 0 ] && grep -q "PROTOCOL=mine: expected chain or thesis" "$tmp/e"; then
+  ok "an unknown protocol is refused"; else ko "unknown protocol" "$(cat "$tmp/e")"; fi
+
 # refusals
 $REP OUT="$tmp/c" PRESET=huge > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "PRESET=huge: expected full, small or tiny" "$tmp/e"; then

@@ -8,6 +8,9 @@
 #
 # Steps and their files (under OUT):
 #   prims       prims-s<N>/population.genome       configs/prims.cfg, seeds 1..RUNS
+#   chain       chain-s<N>/population.genome       PROTOCOL=chain: the chain stage,
+#                                                  configs/chain_prim.cfg from prims-s<N>
+#                                                  (SPEC 12; PROTOCOL=thesis, the default: none)
 #   integration posteval/integration/summary.csv   top 10 of each primitive run, caretaker words
 #   integrated  int-<cond>-s<N>/population.genome  4 conditions x RUNS seeds, assembled from the
 #                                                  primitive runs (integrated.populations)
@@ -21,6 +24,10 @@
 # every step working in well under an hour, not the thesis's results.
 
 PRESET ?= full
+# thesis: the thesis's primitive stages alone (their integration test: 0 of 1200); chain: each
+# primitive run continued by the chain stage (configs/chain_prim.cfg; SPEC 12, docs/PROTOCOL.md),
+# the candidate whose primitives begin to chain; the default once it reaches the thesis's median
+PROTOCOL ?= thesis
 OUT ?= runs/replicate
 THREADS ?= 0
 PYTHON ?= /usr/bin/python3
@@ -32,6 +39,7 @@ RUNS ?= 10
 else ifeq ($(PRESET),small)
 RUNS ?= 2
 PRIM_ARGS ?= --generations 40
+CHAIN_ARGS ?= --generations 10
 INT_ARGS ?= --generations 3
 INTEG_ARGS ?= --set posteval.integration_top=2 --set posteval.integration_trials=8
 ROB_ARGS ?= --set posteval.robustness_trials=8
@@ -41,6 +49,7 @@ else ifeq ($(PRESET),tiny)
 RUNS ?= 2
 GA_TINY := --set ga.population=20 --set ga.elites=2 --set ga.parents=4
 PRIM_ARGS ?= --generations 2 $(GA_TINY)
+CHAIN_ARGS ?= --generations 2 $(GA_TINY) --set stage.chain_trials=2 --set integrated.steps=20
 INT_ARGS ?= --generations 2 $(GA_TINY) --set integrated.trials=4 --set integrated.steps=20
 INTEG_ARGS ?= --set posteval.integration_top=2 --set posteval.integration_trials=4
 FIG3_3_ARGS ?= --bin 1
@@ -49,6 +58,9 @@ GEN_ARGS ?= --set posteval.generalisation_cells=2 --set posteval.generalisation_
   --set posteval.generalisation_steps=20
 else
 $(error PRESET=$(PRESET): expected full, small or tiny)
+endif
+ifeq ($(filter $(PROTOCOL),chain thesis),)
+$(error PROTOCOL=$(PROTOCOL): expected chain or thesis)
 endif
 
 comma := ,
@@ -64,6 +76,9 @@ STATS := ./apps/stats
 THREADS_ARG := $(if $(filter-out 0,$(THREADS)),--threads $(THREADS))
 
 PRIM_POPS := $(SEEDS:%=$(OUT)/prims-s%/population.genome)
+CHAIN_POPS := $(SEEDS:%=$(OUT)/chain-s%/population.genome)
+# the primitive runs the integration test and the integrated stage take
+PRIMITIVES := $(if $(filter chain,$(PROTOCOL)),$(CHAIN_POPS),$(PRIM_POPS))
 INT_POPS := $(foreach c,$(CONDS),$(SEEDS:%=$(OUT)/int-$(c)-s%/population.genome))
 POST_INTEG := $(OUT)/posteval/integration/summary.csv
 POST_ROB := $(CONDS:%=$(OUT)/posteval/robustness-%/summary.csv)
@@ -76,17 +91,18 @@ STATS_OUT := $(OUT)/stats/table_3_1.txt $(OUT)/stats/table_3_2.txt $(OUT)/stats/
   $(OUT)/stats/selftalk.csv
 REPORT := $(OUT)/report.md
 
-.PHONY: FORCE all prims integration integrated robustness generalisation stats figures report jobs
+.PHONY: FORCE all prims chain integration integrated robustness generalisation stats figures report jobs
 .DELETE_ON_ERROR:
 # a step's files stay when a later step fails: they are results
 .SECONDARY:
 # and when make is stopped: evolve and posteval write them atomically, so they are never
 # partial, and a finished run resumed says "complete" without writing its population again
 # (make's "Deleting file" after a run's last checkpoint lost its population.genome for good)
-.PRECIOUS: $(PRIM_POPS) $(INT_POPS) $(POST_INTEG) $(POST_ROB) $(POST_GEN)
+.PRECIOUS: $(PRIM_POPS) $(CHAIN_POPS) $(INT_POPS) $(POST_INTEG) $(POST_ROB) $(POST_GEN)
 
 all: report
 prims: $(PRIM_POPS)
+chain: $(CHAIN_POPS)
 integration: $(POST_INTEG)
 integrated: $(INT_POPS)
 robustness: $(POST_ROB)
@@ -97,7 +113,7 @@ report: $(REPORT)
 
 # the targets of one step, one per line: a cluster job array runs line $TASK_ID
 jobs:
-	@$(if $(filter prims,$(STEP)),printf '%s\n' $(PRIM_POPS),$(if $(filter integrated,$(STEP)),printf '%s\n' $(INT_POPS),$(if $(filter robustness,$(STEP)),printf '%s\n' $(POST_ROB),$(if $(filter generalisation,$(STEP)),printf '%s\n' $(POST_GEN),echo "jobs: STEP=prims, integrated, robustness or generalisation" >&2; exit 2))))
+	@$(if $(filter prims,$(STEP)),printf '%s\n' $(PRIM_POPS),$(if $(filter chain,$(STEP)),printf '%s\n' $(CHAIN_POPS),$(if $(filter integrated,$(STEP)),printf '%s\n' $(INT_POPS),$(if $(filter robustness,$(STEP)),printf '%s\n' $(POST_ROB),$(if $(filter generalisation,$(STEP)),printf '%s\n' $(POST_GEN),echo "jobs: STEP=prims, chain, integrated, robustness or generalisation" >&2; exit 2)))))
 
 # ---- evolution: --resume continues a killed run to the identical files (or starts it). It
 # runs every time (FORCE): evolve writes population.genome before its last checkpoint, so a run
@@ -107,19 +123,24 @@ $(OUT)/prims-s%/population.genome: FORCE
 	@mkdir -p $(OUT)
 	$(EVOLVE) configs/prims.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(PRIM_ARGS) >> $(@D).log
 
+# the chain stage continues primitive run N's final population, with the same seed
+$(OUT)/chain-s%/population.genome: $(OUT)/prims-s%/population.genome FORCE
+	$(EVOLVE) configs/chain_prim.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(CHAIN_ARGS) \
+	  --set stage.init_population=$< >> $(@D).log
+
 # every integrated run starts from the same assembled genotypes: the top 10 of each primitive run
-$(OUT)/int-%/population.genome: $(PRIM_POPS) FORCE
+$(OUT)/int-%/population.genome: $(PRIMITIVES) FORCE
 	$(EVOLVE) configs/integrated_$(word 1,$(subst -s, ,$*)).cfg --seed $(lastword $(subst -s, ,$*)) \
 	  --out $(@D) --resume $(THREADS_ARG) $(INT_ARGS) \
-	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIM_POPS))) >> $(@D).log
+	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIMITIVES))) >> $(@D).log
 
 FORCE:
 
 
 # ---- post-evaluation (each writes DIR/trials.csv and DIR/summary.csv atomically; --resume
 # continues a killed test from its DIR/posteval.journal)
-$(POST_INTEG): $(PRIM_POPS)
-	$(POSTEVAL) integration configs/prims.cfg $(PRIM_POPS) --out $(@D) --resume $(THREADS_ARG) $(INTEG_ARGS)
+$(POST_INTEG): $(PRIMITIVES)
+	$(POSTEVAL) integration configs/prims.cfg $(PRIMITIVES) --out $(@D) --resume $(THREADS_ARG) $(INTEG_ARGS)
 
 $(OUT)/posteval/robustness-%/summary.csv: $(INT_POPS)
 	$(POSTEVAL) robustness configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
@@ -170,7 +191,7 @@ $(OUT)/stats/%.txt: $(OUT)/summary/%.csv
 
 # ---- figures (tools/fig_*.py): PNG and SVG
 FIG = $(PYTHON) tools/$(1).py $(2) -o $(OUT)/figures/$(3).png -o $(OUT)/figures/$(3).svg
-$(OUT)/figures/.done: $(PRIM_POPS) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selftalk.csv
+$(OUT)/figures/.done: $(PRIMITIVES) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selftalk.csv
 	@mkdir -p $(@D)
 	$(call FIG,fig_prim_fitness,$(PRIM_POPS:/population.genome=),fig3_1)
 	$(call FIG,fig_integration,$(OUT)/summary/integration.csv $(FIG3_3_ARGS),fig3_3)

@@ -33,8 +33,9 @@ CHAIN_SUM := --set stage.chain_trials=8 --set stage.chain_combine=sum --set stag
 KEYS_chain_sum := $(CHAIN_SUM)
 KEYS_chain_gated := $(CHAIN_SUM) --set stage.chain_gate=8
 KEYS_handover_chain_gated := --set stage.handover=true $(CHAIN_SUM) --set stage.chain_gate=8
+KEYS_handover_chain_sum := --set stage.handover=true $(CHAIN_SUM)
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
-  chain_gated handover_chain_gated
+  chain_gated handover_chain_gated handover_chain_sum
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
 $(error CAND=$(CAND): expected one of $(CANDIDATES))
