@@ -62,6 +62,10 @@ static void handover_spec(const stProtocol *p, int j, stTrialSpec *t) {
 }
 
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
+  ST_ASSERT(p && t);
+  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
+  ST_ASSERT(generation >= 0);
+  ST_ASSERT(index >= 0 && index < (stage == ST_STAGE_MAIN ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS));
   const stConfig *c = &p->cfg;
   memset(t, 0, sizeof *t);
   t->stage = stage;
@@ -91,6 +95,8 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
 }
 
 void st_handover_fallback(const stProtocol *p, const stTrialSpec *h, stTrialSpec *t) {
+  ST_ASSERT(p && h && t);
+  ST_ASSERT(h->handover);
   st_trial_spec(p, ST_STAGE_MAIN, h->generation, h->primitive * ST_NPOSTURE + h->k, t);
   memcpy(t->target, h->target, sizeof t->target);
   t->index = h->index;
@@ -98,6 +104,8 @@ void st_handover_fallback(const stProtocol *p, const stTrialSpec *h, stTrialSpec
 
 void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_key,
                       stEpisodeSpec *e, stWords *words) {
+  ST_ASSERT(p && t && e && words);
+  ST_ASSERT(t->primitive >= 0 && t->primitive < ST_NPRIM);
   memset(e, 0, sizeof *e);
   e->dynamic = t->stage != ST_STAGE_SIMPLE;
   memcpy(e->qhat0, t->qhat0, sizeof e->qhat0);
@@ -126,6 +134,7 @@ static double masked_penalty(const stTraceStep *s, int mask) {
 }
 
 void st_score_begin(stTrialScore *sc, const stTrialSpec *t) {
+  ST_ASSERT(sc && t);
   memset(sc, 0, sizeof *sc);
   sc->r.handover_step = -1;
   sc->stage = t->stage;
@@ -139,6 +148,8 @@ void st_score_begin(stTrialScore *sc, const stTrialSpec *t) {
 int st_score_step(stTrialScore *sc, const stFitnessDef *fd, int step, const stQuantities *q,
                   double y_focus, double threshold, double penalty, int fell, int unstable,
                   double *S_out, double *P_out) {
+  ST_ASSERT(sc && fd && q);
+  ST_ASSERT(step >= 0);
   stTrialResult *r = &sc->r;
   const double S = st_step_fitness(fd, sc->stage, sc->primitive, q, y_focus, threshold);
   r->sum_s += S;
@@ -171,6 +182,7 @@ int st_score_step(stTrialScore *sc, const stFitnessDef *fd, int step, const stQu
 
 void st_score_end(stTrialScore *sc, const stFitnessDef *fd, double obj_z, double table_top_z,
                   stTrialResult *out) {
+  ST_ASSERT(sc && fd && out);
   stTrialResult *r = &sc->r;
   const long remaining = sc->steps - r->steps_run;
   if (r->end == ST_END_SUCCESS) r->sum_s += (double)remaining;
@@ -237,6 +249,7 @@ static void prim_end(void *self, const stWorld *w) {
 
 stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
                         stTrialResult *r) {
+  ST_ASSERT(s && p && t && r);
   s->p = p;
   s->t = t;
   s->r = r;
@@ -258,6 +271,7 @@ static stStatus run_episode(const stProtocol *p, stWorkspace *ws, const stTrialS
 stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                            const stController *ctl, uint64_t seed_key, stTrialResult *r,
                            stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && ws && t && ctl && ctl->act && r);
   stStatus st = run_episode(p, ws, t, ctl, seed_key, r, trace, ctx, err, errsz);
   if (st || !t->handover || r->handover_step >= 0) return st;
   if (!p->cfg.stage_handover_fallback) { /* the chain broke before the primitive: nothing earned */
@@ -276,6 +290,7 @@ stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrial
                              const stNetParams *net, const stForce *force, int nforce,
                              uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
                              char *err, size_t errsz) {
+  ST_ASSERT(net);
   stStatus st = st_force_check(force, nforce, err, errsz);
   if (st) return st;
   stNetController c;
@@ -296,6 +311,9 @@ typedef struct stageSums {
 } stageSums;
 
 uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index) {
+  ST_ASSERT(p);
+  ST_ASSERT(generation >= 0 && individual >= 0);
+  ST_ASSERT(index >= 0 && index < ST_MAIN_TRIALS_MAX);
   const uint64_t seed = (uint64_t)p->cfg.run_seed;
   if (index >= ST_PRIM_TRIALS)
     return st_rng_keyed(seed, ST_RNG_HANDOVER_SOLVER, (uint64_t)generation, (uint64_t)individual,
@@ -305,6 +323,8 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
 }
 
 int st_stage_trials(const stProtocol *p, stStage stage) {
+  ST_ASSERT(p);
+  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
   return stage == ST_STAGE_MAIN && p->cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
 }
 
@@ -346,6 +366,9 @@ static stStatus chain_evaluate(const stProtocol *p, stWorkspace *ws, int generat
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, stEvaluation *e, char *err,
                            size_t errsz) {
+  ST_ASSERT(p && ws && net && e);
+  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
+  ST_ASSERT(generation >= 0 && individual >= 0);
   memset(e, 0, sizeof *e);
   stageSums sums;
   memset(&sums, 0, sizeof sums);

@@ -191,14 +191,17 @@ void st_robot_destroy(stRobot *r) {
 }
 
 double st_robot_dof_angle(const stRobot *r, int dof, double qhat) {
+  ST_ASSERT(r && dof >= 0 && dof < ST_NDOF);
   return r->dof_lo[dof] + qhat * (r->dof_hi[dof] - r->dof_lo[dof]);
 }
 
 double st_robot_dof_qhat(const stRobot *r, int dof, double angle) {
+  ST_ASSERT(r && dof >= 0 && dof < ST_NDOF);
   return (angle - r->dof_lo[dof]) / (r->dof_hi[dof] - r->dof_lo[dof]);
 }
 
 void st_robot_angles(const stRobot *r, const double *qhat, double *angle) {
+  ST_ASSERT(r && qhat && angle);
   for (int b = 0; b < r->nbody; b++) {
     int d = r->body_dof[b];
     angle[b] = d < 0 ? 0.0
@@ -280,6 +283,7 @@ void st_robot_point_local(const double R[9], const double p[3], const double wor
 }
 
 void st_robot_fk(const stRobot *r, const double *qhat, double (*R)[9], double (*p)[3]) {
+  ST_ASSERT(r && qhat && R && p);
   double angle[256];
   double *a = r->nbody <= 256 ? angle : malloc(sizeof(double) * (size_t)r->nbody);
   st_robot_angles(r, qhat, a);
