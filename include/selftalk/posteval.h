@@ -28,22 +28,13 @@
 #include <stdio.h>
 
 #include "selftalk/integrated.h"
+#include "selftalk/study.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-typedef enum stPostTest {
-  ST_POST_INTEGRATION = 0,
-  ST_POST_ROBUSTNESS,
-  ST_POST_GENERALISATION,
-  ST_POST_NTESTS
-} stPostTest;
-
-/* "integration", "robustness", "generalisation". */
-const char *st_post_test_name(stPostTest test);
-/* The test named, or -1. */
-int st_post_test_parse(const char *name);
+/* stPostTest, its names: selftalk/study.h */
 /* The test's reader bit of the key table (ST_CONFIG_INTEGRATION_TEST, ...). */
 unsigned st_post_test_reader(stPostTest test);
 

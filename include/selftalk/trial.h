@@ -16,7 +16,7 @@
 extern "C" {
 #endif
 
-#define ST_PRIM_TRIALS 16 /* trials of a primitive stage: 4 per primitive */
+#define ST_PRIM_TRIALS (ST_NPRIM * ST_NPOSTURE) /* trials of a primitive stage: 16 */
 /* main-prim's hand-over trials (stage.handover, not the thesis's protocol): open, grasp and
  * move from each reach posture k, indices ST_PRIM_TRIALS + 4 (primitive - 1) + k */
 #define ST_HANDOVER_TRIALS 12

@@ -8,18 +8,6 @@
 #include "posteval/journal.h"
 #include "selftalk/posteval.h"
 
-static const char *const g_tests[ST_POST_NTESTS] = {"integration", "robustness", "generalisation"};
-
-const char *st_post_test_name(stPostTest t) {
-  return (int)t >= 0 && t < ST_POST_NTESTS ? g_tests[t] : "?";
-}
-
-int st_post_test_parse(const char *name) {
-  for (int t = 0; t < ST_POST_NTESTS; t++)
-    if (!strcmp(name, g_tests[t])) return t;
-  return -1;
-}
-
 unsigned st_post_test_reader(stPostTest t) {
   static const unsigned bit[ST_POST_NTESTS] = {
       ST_CONFIG_INTEGRATION_TEST, ST_CONFIG_ROBUSTNESS_TEST, ST_CONFIG_GENERALISATION_TEST};

@@ -483,8 +483,8 @@ void st_scripted_destroy(stScripted *s) {
 const char *st_scripted_phase(const stScripted *s) {
   ST_ASSERT(s);
   switch (s->word) {
-    case ST_PRIM_REACH: return "reach";
-    case ST_PRIM_OPEN: return "open";
+    case ST_PRIM_REACH:
+    case ST_PRIM_OPEN: return st_primitive_name(s->word);
     case ST_PRIM_GRASP:
       return s->grasp_phase == GR_APPROACH ? "grasp:approach"
              : s->grasp_phase == GR_CLOSE  ? "grasp:close"
