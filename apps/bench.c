@@ -24,6 +24,7 @@
 #include <time.h>
 
 #include "app_common.h"
+#include "selftalk/evolve.h"
 #include "selftalk/net.h"
 #include "selftalk/postures.h"
 #include "selftalk/sensors.h"
@@ -260,7 +261,7 @@ int main(int argc, char **argv) {
   if (reps < 1 || trials < 1 || threads < 0) app_die(prog, "--reps, --trials must be >= 1, --threads >= 0");
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
-  if (threads == 0) threads = cfg.run_threads > 0 ? cfg.run_threads : omp_get_num_procs();
+  threads = st_thread_count(threads, &cfg);
   char err[1024];
   stRobot *robot = NULL;
   if (st_robot_create(&cfg, &robot, err, sizeof err)) app_die(prog, "%s", err);

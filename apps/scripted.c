@@ -26,6 +26,7 @@
 #include <sys/stat.h>
 
 #include "app_common.h"
+#include "selftalk/evolve.h"
 #include "selftalk/scripted.h"
 
 static const char *prog = "scripted";
@@ -103,8 +104,7 @@ int main(int argc, char **argv) {
   }
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
-  if (threads < 0) threads = cfg.run_threads;
-  if (threads <= 0) threads = omp_get_num_procs();
+  threads = st_thread_count(threads, threads < 0 ? &cfg : NULL); /* --threads 0: one per core */
   if (trace_dir && mkdir(trace_dir, 0777) != 0 && errno != EEXIST)
     app_die(prog, "%s: cannot create the directory", trace_dir);
   char err[1024];

@@ -13,6 +13,7 @@
 
 #include "core/internal.h"
 #include "posteval/journal.h"
+#include "selftalk/evolve.h" /* st_thread_count */
 #include "selftalk/io.h"
 #include "selftalk/posteval.h"
 
@@ -374,8 +375,7 @@ static stStatus plan(postRun *R, char *err, size_t errsz) {
   R->labels.test = st_post_test_name(d->test);
   R->labels.condition = R->condition;
   R->labels.words = R->words;
-  R->threads = d->threads > 0 ? d->threads : R->cfg->run_threads > 0 ? R->cfg->run_threads
-                                                                        : omp_get_num_procs();
+  R->threads = st_thread_count(d->threads, R->cfg);
   return ST_OK;
 }
 
