@@ -19,7 +19,6 @@
  * the first step and the hand frozen at its start posture, 60 steps each; held_kept counts the
  * trials whose ball is still above the table at the end. */
 #include <math.h>
-#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
