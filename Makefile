@@ -61,9 +61,10 @@ CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS
 
 # lib/ by layer: core (network, GA, config, genomes, statistics: no simulator, so a robot
 # controller can link them alone), model (URDF, kinematics), world (kinematic and ODE
-# backends), task (postures, fitness, caretaker, scripted controller), episode (the one
-# episode loop and its trials), run (evolution), posteval (the post-evaluation tests). Objects
-# mirror the folders under build/obj/.
+# backends), task (postures, fitness, caretaker), episode (the one episode loop, its
+# controllers - the network's and the scripted one - its trials and the trace CSV), run
+# (evolution), posteval (the post-evaluation tests). Objects mirror the folders under
+# build/obj/. A file includes no header of a higher layer (tests/check_layers.sh).
 LAYERS := core model world task episode run posteval
 STRAY_SRC := $(filter-out $(LAYERS:%=lib/%/),$(sort $(dir $(wildcard lib/*.c lib/*.cpp lib/*/*.c lib/*/*.cpp))))
 $(if $(STRAY_SRC),$(error sources outside the layer folders ($(STRAY_SRC)): move them into one of lib/{$(LAYERS)}/ or add a layer to LAYERS))

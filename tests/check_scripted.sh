@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The scripted controller (apps/scripted, lib/task/scripted.c) proves every primitive physically
+# The scripted controller (apps/scripted, lib/episode/scripted.c) proves every primitive physically
 # achievable in dynamic mode: the 16 main-prim trials (reach, open, grasp, move from each
 # initial posture, scored by the library) and the 8 integrated trials (4 reach postures x 2
 # targets, the caretaker's words, 12 s) must all succeed. One check per trial line, plus: the

@@ -118,15 +118,23 @@ stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWor
   *plan = st_integrated_plan(def, generation, i);
   stEpisodeSpec e;
   st_int_trial(p, def, generation, individual, i, &e);
-  const stWords words = st_int_words(p, plan->words);
   stNetController nc;
   const stController ctl = st_net_controller(&nc, net, NULL, 0);
+  return st_int_run_with(p, def, ws, &e, &ctl, plan, r, pred, trace, ctx, err, errsz);
+}
+
+stStatus st_int_run_with(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
+                         const stEpisodeSpec *e, const stController *ctl, const stIntPlan *plan,
+                         stIntTrialResult *r, stPredScore *pred, stTraceFn trace, void *ctx,
+                         char *err, size_t errsz) {
+  ST_ASSERT(p && def && ws && e && ctl && plan && r);
+  const stWords words = st_int_words(p, plan->words);
   const int predicts = plan->fitness == ST_FIT_PREDICTION;
   stIntRecord rec = {0, 0, NULL, NULL};
-  stStatus st = predicts ? record_alloc(&rec, e.steps, err, errsz) : ST_OK;
+  stStatus st = predicts ? record_alloc(&rec, e->steps, err, errsz) : ST_OK;
   stIntScorer is;
   const stScorer sc = st_int_scorer(&is, p, def, r, predicts ? &rec : NULL);
-  if (!st) st = st_episode_run(p, ws, &e, &ctl, &words, &sc, trace, ctx, err, errsz);
+  if (!st) st = st_episode_run(p, ws, e, ctl, &words, &sc, trace, ctx, err, errsz);
   if (pred) memset(pred, 0, sizeof *pred);
   if (!st && pred && predicts) st = score_prediction(def, &rec, pred, err, errsz);
   free(rec.word);

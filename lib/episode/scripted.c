@@ -539,9 +539,8 @@ stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted
                                     (uint64_t)(2 * k + t)).key;
   stEpisodeSpec e;
   st_int_episode(p, &def, k, t, NULL, key, &e);
-  const stWords words = st_int_words(p, ST_WORDS_CARETAKER);
+  /* the caretaker's words, scored by the integrated fitness (no prediction: it does not talk) */
+  const stIntPlan plan = {ST_WORDS_CARETAKER, ST_FIT_INTEGRATED, 1.0, 0};
   const stController c = st_scripted_controller(s);
-  stIntScorer is;
-  const stScorer sc = st_int_scorer(&is, p, &def, r, NULL);
-  return st_episode_run(p, ws, &e, &c, &words, &sc, trace, ctx, err, errsz);
+  return st_int_run_with(p, &def, ws, &e, &c, &plan, r, NULL, trace, ctx, err, errsz);
 }
