@@ -119,7 +119,7 @@ static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParam
     stWorld *w = NULL;
     char e[256];
     if (st_world_create_dynamic(p->robot, &p->scene, def, &w, e, sizeof e) == ST_OK) {
-      stWorkspace ws = {NULL, w}; /* the episodes run on this world, with its def */
+      stWorkspace ws = {NULL, w, NULL}; /* the episodes run on this world, with its def */
 #pragma omp single
       st_world_dynamic_info(w, info);
 #pragma omp for schedule(dynamic, 4)
@@ -293,7 +293,7 @@ int main(int argc, char **argv) {
       char e[256];
       if (st_world_create(p->robot, &p->scene, &w, e, sizeof e) == ST_OK) {
         w->reference_contacts = reference;
-        stWorkspace ws = {w, NULL}; /* the episodes run on this world */
+        stWorkspace ws = {w, NULL, NULL}; /* the episodes run on this world */
 #pragma omp for schedule(dynamic, 16)
         for (int t = 0; t < trials; t++) {
           stEpisodeSpec et = ep;

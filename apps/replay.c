@@ -231,7 +231,7 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
     fprintf(stderr, "replay: postures.vary_starts: the %s start drawn for generation %d (draw %d)\n",
             st_primitive_name(t.primitive), generation, t.start_draws);
   trace->csv.arch = np->arch;
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   stTrialResult r;
   char err[1024];
   const uint64_t key = st_trial_seed_key(p, generation, index, trial);
@@ -273,7 +273,7 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
   st_integrated_def_from_config(&p->cfg, &def);
   if (trial >= def.trials) app_die(prog, "--trial %d: expected 0..%d", trial, def.trials - 1);
   trace->csv.arch = np->arch;
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   stIntPlan plan;
   stIntTrialResult r;
   stPredScore pred;
@@ -318,7 +318,7 @@ static void replay_posteval(const stProtocol *p, stPostTest test, int caretaker,
   stPostTrial t;
   st_post_trial(&pd, &p->scene, trial, &t);
   trace->csv.arch = np->arch;
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   stNetController nc;
   const stController ctl = st_net_controller(&nc, np, NULL, 0);
   stPostResult r;

@@ -85,7 +85,7 @@ int main(int argc, char **argv) {
   }
 #pragma omp parallel num_threads(threads) reduction(+ : failed_setup)
   {
-    stWorkspace ws = {NULL, NULL};
+    stWorkspace ws = {NULL, NULL, NULL};
     stScripted *s = NULL;
     char terr[1024];
     if (st_scripted_create(p, &s, terr, sizeof terr)) failed_setup++;

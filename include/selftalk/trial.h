@@ -52,6 +52,20 @@ typedef struct stTrialSpec {
  * index - 16): object, then target), built whatever stage.handover says. */
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t);
 
+/* A stage's trials in one generation, built once and read by every individual's evaluation
+ * (st_stage_evaluate keeps the last one in its workspace): each is keyed by (seed, generation,
+ * trial) alone, and with postures.vary_starts a start costs inverse-kinematics draws. */
+typedef struct stTrialTable {
+  stConfig cfg;          /* the protocol's config it was built for (a copy: compared whole) */
+  stStage stage;
+  int generation;
+  int n;                 /* st_stage_trials */
+  stTrialSpec t[ST_MAIN_TRIALS_MAX]; /* st_trial_spec of each trial whose primitive
+                                        p->primitives evaluates; the others zero */
+} stTrialTable;
+
+void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table);
+
 /* The trial a hand-over trial falls back to when its roll-in did not hand over: the fixed
  * main-prim trial of its primitive and posture, with the hand-over trial's target and index. */
 void st_handover_fallback(const stProtocol *p, const stTrialSpec *handover, stTrialSpec *t);

@@ -57,7 +57,9 @@ void st_workspace_free(stWorkspace *ws) {
   if (!ws) return;
   st_world_destroy(ws->kin);
   st_world_destroy(ws->dyn);
+  free(ws->trials);
   ws->kin = ws->dyn = NULL;
+  ws->trials = NULL;
 }
 
 const char *st_word_source_name(stWordSource s) {

@@ -328,18 +328,46 @@ int st_stage_trials(const stProtocol *p, stStage stage) {
   return stage == ST_STAGE_MAIN && p->cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
 }
 
-/* runs trial `index` of the generation and adds it to its primitive's sums */
-static stStatus add_trial(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
-                          int individual, int index, const stNetParams *net, stageSums *sums,
+/* the primitive of trial i: fixed trials i / 4, hand-over trials 1 + (i - 16) / 4 */
+static int trial_primitive(int i) {
+  return i < ST_PRIM_TRIALS ? i / ST_NPOSTURE : ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE;
+}
+
+void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table) {
+  ST_ASSERT(p && table);
+  memset(table, 0, sizeof *table);
+  memcpy(&table->cfg, &p->cfg, sizeof table->cfg);
+  table->stage = stage;
+  table->generation = generation;
+  table->n = st_stage_trials(p, stage);
+  for (int i = 0; i < table->n; i++)
+    if (p->primitives >> trial_primitive(i) & 1u) st_trial_spec(p, stage, generation, i, &table->t[i]);
+}
+
+/* the workspace's table for the generation, built when it holds another (or none) */
+static const stTrialTable *generation_table(const stProtocol *p, stWorkspace *ws, stStage stage,
+                                            int generation, char *err, size_t errsz) {
+  if (!ws->trials && !(ws->trials = calloc(1, sizeof *ws->trials))) { /* n 0: empty */
+    st__errf(err, errsz, "trial table: out of memory");
+    return NULL;
+  }
+  stTrialTable *tab = ws->trials;
+  if (tab->n == 0 || tab->generation != generation || tab->stage != stage ||
+      memcmp(&tab->cfg, &p->cfg, sizeof tab->cfg) != 0)
+    st_trial_table(p, stage, generation, tab);
+  return tab;
+}
+
+/* runs trial t of the generation and adds it to its primitive's sums */
+static stStatus add_trial(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                          int individual, const stNetParams *net, stageSums *sums,
                           stTrialResult *r, char *err, size_t errsz) {
-  stTrialSpec t;
-  st_trial_spec(p, stage, generation, index, &t);
-  const uint64_t key = st_trial_seed_key(p, generation, individual, index);
-  stStatus st = st_trial_run(p, ws, &t, net, key, r, NULL, NULL, err, errsz);
+  const uint64_t key = st_trial_seed_key(p, t->generation, individual, t->index);
+  stStatus st = st_trial_run(p, ws, t, net, key, r, NULL, NULL, err, errsz);
   if (st) return st;
-  sums->sum_sp[t.primitive] += r->sum_s - r->sum_p;
-  sums->n[t.primitive] += r->steps;
-  sums->bonus[t.primitive] += r->success ? p->fitness.bonus : 0.0;
+  sums->sum_sp[t->primitive] += r->sum_s - r->sum_p;
+  sums->n[t->primitive] += r->steps;
+  sums->bonus[t->primitive] += r->success ? p->fitness.bonus : 0.0;
   return ST_OK;
 }
 
@@ -372,13 +400,12 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
   memset(e, 0, sizeof *e);
   stageSums sums;
   memset(&sums, 0, sizeof sums);
-  const int ntrials = st_stage_trials(p, stage);
-  for (int i = 0; i < ntrials; i++) {
-    /* fixed trials i / 4 and hand-over trials 1 + (i - 16) / 4: the primitive of trial i */
-    const int prim = i < ST_PRIM_TRIALS ? i / ST_NPOSTURE : ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE;
-    if (!(p->primitives >> prim & 1u)) continue;
+  const stTrialTable *tab = generation_table(p, ws, stage, generation, err, errsz);
+  if (!tab) return ST_ERR_NOMEM;
+  for (int i = 0; i < tab->n; i++) {
+    if (!(p->primitives >> trial_primitive(i) & 1u)) continue;
     stTrialResult r;
-    stStatus st = add_trial(p, ws, stage, generation, individual, i, net, &sums, &r, err, errsz);
+    stStatus st = add_trial(p, ws, &tab->t[i], individual, net, &sums, &r, err, errsz);
     if (st) return st;
     e->ntrials++;
     e->successes += r.success;
