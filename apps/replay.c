@@ -405,7 +405,7 @@ int main(int argc, char **argv) {
   const int post = post_name ? st_post_test_parse(post_name) : -1;
   if (post_name && post < 0)
     app_die(prog, "--posteval '%s': expected integration, robustness or generalisation", post_name);
-  if (caretaker && post != ST_POST_GENERALISATION)
+  if (caretaker && (post < 0 || st_post_test_info((stPostTest)post)->variant != ST_POST_CARETAKER))
     app_die(prog, "--caretaker is the generalisation test's variant: give --posteval generalisation");
   if (post >= 0 && (stage_name || nforce))
     app_die(prog, "--posteval replays a post-evaluation trial: --stage and --force apply to primitive trials");

@@ -8,10 +8,48 @@
 #include "posteval/journal.h"
 #include "selftalk/posteval.h"
 
+/* ---- the tests, one row each ---- */
+
+static int integration_trials(const stConfig *c) { return c->posteval_integration_trials; }
+static int robustness_trials(const stConfig *c) { return c->posteval_robustness_trials; }
+static int grid_trials(const stConfig *c) {
+  const int cells = c->posteval_generalisation_cells;
+  return cells * cells * ST_NPOSTURE * c->posteval_generalisation_repetitions;
+}
+static int integrated_steps(const stConfig *c) { return c->integrated_steps; }
+static int generalisation_steps(const stConfig *c) { return c->posteval_generalisation_steps; }
+
+/* thesis 2.10.1-2.10.3 and SPEC 11-12, in stPostTest order */
+static const stPostTestInfo g_tests[ST_POST_NTESTS] = {
+    /* integration: the primitive runs' best under the caretaker; no words as its variant */
+    {ST_CONFIG_INTEGRATION_TEST, 0, 1, ST_POST_NO_WORDS, 1, 0, integration_trials,
+     integrated_steps},
+    /* robustness: the integrated runs, their own autonomous words, fresh offsets; no variant */
+    {ST_CONFIG_ROBUSTNESS_TEST, 0, 0, ST_POST_OWN_WORDS, 0, 0, robustness_trials,
+     integrated_steps},
+    /* generalisation: the grid, the runs that succeeded autonomously; the caretaker variant */
+    {ST_CONFIG_GENERALISATION_TEST, 1, 0, ST_POST_CARETAKER, 0, 1, grid_trials,
+     generalisation_steps},
+};
+
+/* the variants: their label suffix (st_post_condition), and why each belongs to its test */
+static const struct {
+  const char *name, *suffix, *why;
+} g_variants[] = {
+    {"own words", "", ""},
+    {"caretaker", "0", "ST-CT0, ST0; the integration test always hears the caretaker"},
+    {"no-words", "-nowords",
+     "robustness and generalisation already hear the condition's autonomous words"},
+};
+#define NVARIANTS (int)(sizeof g_variants / sizeof g_variants[0])
+
+const stPostTestInfo *st_post_test_info(stPostTest t) {
+  return (int)t >= 0 && t < ST_POST_NTESTS ? &g_tests[t] : NULL;
+}
+
 unsigned st_post_test_reader(stPostTest t) {
-  static const unsigned bit[ST_POST_NTESTS] = {
-      ST_CONFIG_INTEGRATION_TEST, ST_CONFIG_ROBUSTNESS_TEST, ST_CONFIG_GENERALISATION_TEST};
-  return (int)t >= 0 && t < ST_POST_NTESTS ? bit[t] : 0u;
+  const stPostTestInfo *info = st_post_test_info(t);
+  return info ? info->reader : 0u;
 }
 
 /* ---- the trial tables ---- */
@@ -26,19 +64,10 @@ void st_post_def_from_config(const stConfig *c, stPostTest test, stPostDef *d) {
   d->center[1] = c->scene_object_center_y;
   d->offset = c->posteval_generalisation_offset;
   d->repetitions = c->posteval_generalisation_repetitions;
-  switch (test) {
-    case ST_POST_INTEGRATION:
-      d->trials = c->posteval_integration_trials;
-      d->steps = c->integrated_steps;
-      break;
-    case ST_POST_ROBUSTNESS:
-      d->trials = c->posteval_robustness_trials;
-      d->steps = c->integrated_steps;
-      break;
-    default:
-      d->trials = d->cells * d->cells * ST_NPOSTURE * d->repetitions;
-      d->steps = c->posteval_generalisation_steps;
-  }
+  const stPostTestInfo *info = st_post_test_info(test);
+  ST_ASSERT(info);
+  d->trials = info->trials(c);
+  d->steps = info->steps(c);
 }
 
 void st_post_cell_center(const stPostDef *d, int cell, double xy[2]) {
@@ -51,7 +80,7 @@ void st_post_trial_layout(const stPostDef *d, int i, stPostTrial *t) {
   memset(t, 0, sizeof *t);
   t->index = i;
   t->steps = d->steps;
-  if (d->test == ST_POST_GENERALISATION) { /* a cell of the grid with each posture */
+  if (st_post_test_info(d->test)->grid) { /* a cell of the grid with each posture */
     const int per_cell = ST_NPOSTURE * d->repetitions;
     t->type = -1;
     t->cell = i / per_cell;
@@ -87,7 +116,7 @@ void st_post_trial(const stPostDef *d, const stScene *s, int i, stPostTrial *t) 
   st_post_trial_layout(d, i, t);
   stRng rng = st_rng_keyed(d->seed, ST_RNG_POSTEVAL, (uint64_t)d->test, 0, (uint64_t)i);
   t->solver_key = st_rng_keyed(d->seed, ST_RNG_POSTEVAL_SOLVER, (uint64_t)d->test, 0, (uint64_t)i).key;
-  if (d->test == ST_POST_GENERALISATION) grid_trial(d, s, &rng, t);
+  if (st_post_test_info(d->test)->grid) grid_trial(d, s, &rng, t);
   else trained_trial(s, &rng, t);
 }
 
@@ -106,19 +135,23 @@ void st_post_episode(const stProtocol *p, const stPostTrial *t, stEpisodeSpec *e
 
 stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, stPostVariant variant,
                        stWordSource *w, char *err, size_t errsz) {
-  if (variant == ST_POST_CARETAKER && test != ST_POST_GENERALISATION)
-    return st__errf(err, errsz, "the caretaker variant belongs to the generalisation test (ST-CT0, "
-                    "ST0; the integration test always hears the caretaker)"), ST_ERR_ARG;
-  if (variant == ST_POST_NO_WORDS && test != ST_POST_INTEGRATION)
-    return st__errf(err, errsz, "the no-words variant belongs to the integration test (robustness "
-                    "and generalisation already hear the condition's autonomous words)"), ST_ERR_ARG;
-  if (variant != ST_POST_OWN_WORDS && variant != ST_POST_CARETAKER && variant != ST_POST_NO_WORDS)
-    return st__errf(err, errsz, "post-evaluation variant %d (expected 0..2)", (int)variant), ST_ERR_ARG;
+  const stPostTestInfo *info = st_post_test_info(test);
+  ST_ASSERT(info && idef && w);
+  if ((int)variant < 0 || (int)variant >= NVARIANTS)
+    return st__errf(err, errsz, "post-evaluation variant %d (expected 0..%d)", (int)variant,
+                    NVARIANTS - 1), ST_ERR_ARG;
+  if (variant != ST_POST_OWN_WORDS && variant != info->variant) {
+    int owner = 0; /* the test whose variant it is */
+    while (owner < ST_POST_NTESTS && g_tests[owner].variant != variant) owner++;
+    return st__errf(err, errsz, "the %s variant belongs to the %s test (%s)",
+                    g_variants[variant].name, st_post_test_name((stPostTest)owner),
+                    g_variants[variant].why), ST_ERR_ARG;
+  }
   if (variant == ST_POST_NO_WORDS) {
     *w = ST_WORDS_NONE;
     return ST_OK;
   }
-  if (test == ST_POST_INTEGRATION || variant == ST_POST_CARETAKER) {
+  if (info->own_caretaker || variant == ST_POST_CARETAKER) {
     *w = ST_WORDS_CARETAKER;
     return ST_OK;
   }
@@ -174,9 +207,10 @@ static const char *prims_name(const stConfig *c) {
 
 void st_post_condition(const stConfig *c, stPostTest test, stPostVariant variant, char *buf,
                        size_t n) {
-  if (test == ST_POST_INTEGRATION)
-    snprintf(buf, n, "%s%s", prims_name(c), variant == ST_POST_NO_WORDS ? "-nowords" : "");
-  else snprintf(buf, n, "%s%s", table21_name(c), variant == ST_POST_CARETAKER ? "0" : "");
+  const stPostTestInfo *info = st_post_test_info(test);
+  ST_ASSERT(info && (int)variant >= 0 && (int)variant < NVARIANTS);
+  snprintf(buf, n, "%s%s", info->populations ? prims_name(c) : table21_name(c),
+           g_variants[variant].suffix);
 }
 
 int st_post_excluded(const stIntegratedDef *idef, int generation, const uint8_t *success, int n) {
