@@ -55,6 +55,7 @@ unsigned st_post_test_reader(stPostTest t) {
 /* ---- the trial tables ---- */
 
 void st_post_def_from_config(const stConfig *c, stPostTest test, stPostDef *d) {
+  ST_ASSERT(c && d);
   memset(d, 0, sizeof *d);
   d->test = test;
   d->seed = (uint64_t)c->run_seed;
@@ -71,12 +72,16 @@ void st_post_def_from_config(const stConfig *c, stPostTest test, stPostDef *d) {
 }
 
 void st_post_cell_center(const stPostDef *d, int cell, double xy[2]) {
+  ST_ASSERT(d && xy);
+  ST_ASSERT(cell >= 0 && cell < d->cells * d->cells);
   const double mid = 0.5 * (d->cells - 1);
   xy[0] = d->center[0] + (cell / d->cells - mid) * d->cell_size; /* row: along x */
   xy[1] = d->center[1] + (cell % d->cells - mid) * d->cell_size; /* column: along y */
 }
 
 void st_post_trial_layout(const stPostDef *d, int i, stPostTrial *t) {
+  ST_ASSERT(d && t);
+  ST_ASSERT(i >= 0 && i < d->trials);
   memset(t, 0, sizeof *t);
   t->index = i;
   t->steps = d->steps;
@@ -113,6 +118,7 @@ static void grid_trial(const stPostDef *d, const stScene *s, stRng *rng, stPostT
 }
 
 void st_post_trial(const stPostDef *d, const stScene *s, int i, stPostTrial *t) {
+  ST_ASSERT(d && s && t);
   st_post_trial_layout(d, i, t);
   stRng rng = st_rng_keyed(d->seed, ST_RNG_POSTEVAL, (uint64_t)d->test, 0, (uint64_t)i);
   t->solver_key = st_rng_keyed(d->seed, ST_RNG_POSTEVAL_SOLVER, (uint64_t)d->test, 0, (uint64_t)i).key;
@@ -121,6 +127,8 @@ void st_post_trial(const stPostDef *d, const stScene *s, int i, stPostTrial *t) 
 }
 
 void st_post_episode(const stProtocol *p, const stPostTrial *t, stEpisodeSpec *e) {
+  ST_ASSERT(p && t && e);
+  ST_ASSERT(t->posture >= 0 && t->posture < ST_NPOSTURE);
   memset(e, 0, sizeof *e);
   e->dynamic = 1;
   memcpy(e->qhat0, p->posture[ST_PRIM_REACH][t->posture], sizeof e->qhat0);
@@ -214,6 +222,7 @@ void st_post_condition(const stConfig *c, stPostTest test, stPostVariant variant
 }
 
 int st_post_excluded(const stIntegratedDef *idef, int generation, const uint8_t *success, int n) {
+  ST_ASSERT(idef && n >= 0 && (n == 0 || success));
   for (int i = 0; i < n; i++)
     if (success[i] && st_integrated_plan(idef, generation, i).autonomous) return 0;
   return 1;
@@ -276,6 +285,7 @@ int st__post_open_jumped(const char *heard) {
 stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                            const stPostTrial *t, const stController *ctl, stWordSource words,
                            stPostResult *r, stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && idef && ws && t && ctl && r);
   memset(r, 0, sizeof *r);
   stIntegratedDef def = *idef;
   def.steps = t->steps; /* the scorer fills the remainder of this length (unused here) */
@@ -293,6 +303,7 @@ stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stW
 /* ---- results ---- */
 
 void st_post_summarise(const stPostResult *r, int n, int excluded, stPostSummary *s) {
+  ST_ASSERT(s && n >= 0 && (n == 0 || r));
   memset(s, 0, sizeof *s);
   s->trials = n;
   double steps = 0.0;
@@ -312,6 +323,8 @@ static const char *end_name(int end) {
 
 int st_post_write_trials(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
                          const stPostTrial *t, int ntrials, const stPostResult *r) {
+  ST_ASSERT(f && L && nind >= 0 && ntrials >= 0);
+  ST_ASSERT(nind == 0 || (ind && t && r));
   fprintf(f, "test,condition,run,individual,trial,type,cell,posture,repetition,words,success,"
              "reached_step,open_jumped,run_label,heard,end,steps_run,obj_x,obj_y,target_x,"
              "target_y,target_z\n");
@@ -333,6 +346,8 @@ int st_post_write_trials(FILE *f, const stPostLabels *L, const stPostIndividual 
 
 int st_post_write_summary(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
                           int ntrials, const stPostResult *r) {
+  ST_ASSERT(f && L && nind >= 0 && ntrials >= 0);
+  ST_ASSERT(nind == 0 || (ind && r));
   fprintf(f, "test,condition,run,individual,successes,trials,excluded,open_jumped,run_label,"
              "success_rate,mean_steps_to_target,unstable,generation\n");
   for (int i = 0; i < nind; i++) {

@@ -581,6 +581,7 @@ static void release(postRun *R) {
 }
 
 stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz) {
+  ST_ASSERT(def);
   postRun R;
   memset(&R, 0, sizeof R);
   R.def = def;

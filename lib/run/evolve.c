@@ -602,6 +602,7 @@ static void release(run *R) {
 }
 
 stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
+  ST_ASSERT(def && def->cfg);
   run R;
   memset(&R, 0, sizeof R);
   R.def = def;

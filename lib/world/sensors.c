@@ -64,14 +64,17 @@ void st_sensor_inputs(const stWorld *w, const stSensorDef *def, const stQuantiti
 }
 
 double st_penalty_table(const stWorld *w, const stSensorDef *def) {
+  ST_ASSERT(w && def);
   return w->contacts.arm_table ? def->penalty_table : 0.0;
 }
 
 double st_penalty_object(const stWorld *w, const stSensorDef *def) {
+  ST_ASSERT(w && def);
   return w->contacts.robot_object ? def->penalty_object : 0.0;
 }
 
 double st_penalty_moving(const stWorld *w, const stSensorDef *def) {
+  ST_ASSERT(w && def);
   double d = dist(w->obj, w->obj_start);
   if (d < def->move_free) return 0.0;
   double p = d / def->move_scale;
