@@ -203,7 +203,7 @@ stStatus st_ik_evaluate(const stRobot *r, const stIkTarget *t, const double qhat
 
 stStatus st_ik_solve(const stRobot *r, const stIkDef *def, const stIkTarget *t,
                      double qhat[ST_NDOF], stIkResult *result) {
-  ST_ASSERT(r && def && t && qhat && result);
+  ST_ASSERT(r && def && t && qhat); /* result is nullable */
   if (!target_ok(r, t) || def->max_iter < 0 || !(def->damping > 0.0) ||
       !(def->damping_min > 0.0) || !(def->damping_max >= def->damping) || !(def->max_step > 0.0))
     return ST_ERR_ARG;
