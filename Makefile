@@ -3,7 +3,9 @@
 #   make            library (static + shared) and apps
 #   make run        set-up, build, the main job
 #   make test       set-up, build, all tests (quick)
-#   make asan       tests under AddressSanitizer + UBSan
+#   make asan       tests under AddressSanitizer + UBSan, with ST_ASSERT on
+#   make ASSERTS=1  ST_ASSERT on (lib/core/internal.h): the public functions' preconditions
+#                   abort when broken; a debug build is `make OPT="-O0 -g" ASSERTS=1`
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
 #   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable
@@ -22,6 +24,7 @@ APPDIR ?= apps
 OPT ?= -O3 -g
 SAN ?=
 WERROR ?=
+ASSERTS ?=
 
 PKGS_CORE := inih
 PKGS_SIM := ode ccd urdfdom tinyxml assimp eigen3
@@ -51,14 +54,17 @@ mpi_found = $(if $(filter 0 no,$(MPI)),,$(if $(shell command -v $(MPICC) 2>/dev/
 # mpicc wraps $(CC) (OpenMPI and MPICH both honour these)
 EVOLVE_CC = $(if $(HAVE_MPI),OMPI_CC="$(CC)" MPICH_CC="$(CC)" $(MPICC) -DST_WITH_MPI,$(CC))
 CPPFLAGS_ALL = -Iinclude -Ilib $(PKG_CFLAGS)
-CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(CFLAGS)
+# release builds (the default) leave ST_ASSERT out: it never changes a result, only stops early
+ASSERT_FLAGS := $(if $(filter 1,$(ASSERTS)),-DST_ASSERTS)
+CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(ASSERT_FLAGS) $(CFLAGS)
 CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
 
 # lib/ by layer: core (network, GA, config, genomes, statistics: no simulator, so a robot
 # controller can link them alone), model (URDF, kinematics), world (kinematic and ODE
-# backends), task (postures, fitness, caretaker, scripted controller), episode (the one
-# episode loop and its trials), run (evolution), posteval (the post-evaluation tests). Objects
-# mirror the folders under build/obj/.
+# backends), task (postures, fitness, caretaker), episode (the one episode loop, its
+# controllers - the network's and the scripted one - its trials and the trace CSV), run
+# (evolution), posteval (the post-evaluation tests). Objects mirror the folders under
+# build/obj/. A file includes no header of a higher layer (tests/check_layers.sh).
 LAYERS := core model world task episode run posteval
 STRAY_SRC := $(filter-out $(LAYERS:%=lib/%/),$(sort $(dir $(wildcard lib/*.c lib/*.cpp lib/*/*.c lib/*/*.cpp))))
 $(if $(STRAY_SRC),$(error sources outside the layer folders ($(STRAY_SRC)): move them into one of lib/{$(LAYERS)}/ or add a layer to LAYERS))
@@ -196,7 +202,7 @@ test-only: all $(TEST_BIN) $(FAULT_SHIM)
 	+@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
 
 asan-only:
-	$(MAKE) BUILD=build-asan APPDIR=build-asan/apps OPT="-O1 -g -fno-omit-frame-pointer" \
+	$(MAKE) BUILD=build-asan APPDIR=build-asan/apps OPT="-O1 -g -fno-omit-frame-pointer" ASSERTS=1 \
 	  SAN="-fsanitize=address,undefined -fno-sanitize-recover=all" test-only
 
 valgrind-only: $(TEST_BIN)

@@ -8,25 +8,25 @@
  * per thread, and prints the median over R repetitions:
  *   mode=kinematic steps_per_s=... per_core=... threads=...
  *   mode=dynamic steps_per_s=... per_core=... threads=... bodies=... substep=... iterations=...
- * Kinematic trials start from a reach-like posture; dynamic ones cycle through the 16 initial
- * postures of the primitives (SPEC §8) with their object positions, the object-table collision
- * off after 40 (grasp) or 10 (move) steps as in main-prim trials. The same-run baseline is, in
+ * Every trial is an episode of the library's loop (st_episode_run: words, sensing, the network,
+ * the world, a scorer that only sums a checksum), so what is timed is what evolution runs.
+ * Kinematic trials start from a reach-like posture with the reach word; dynamic ones are the 16
+ * main-prim trials of generation 0 (st_trial_spec: their postures, offsets and object-table
+ * switch), cut to 60 steps. The same-run baseline is, in
  * kinematic mode, the brute-force contact detection; in dynamic mode the same trials with
  * dynamics.substep=0.005 (or the --baseline override). Dynamic mode also prints the contact-rich
  * figure held=...: the four move starts (the ball in a stable grasp) with the table gone from
  * the first step and the hand frozen at its start posture, 60 steps each; held_kept counts the
  * trials whose ball is still above the table at the end. */
 #include <math.h>
-#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
 #include "app_common.h"
-#include "selftalk/net.h"
-#include "selftalk/postures.h"
-#include "selftalk/sensors.h"
+#include "selftalk/evolve.h"
+#include "selftalk/trial.h"
 
 static const char *prog = "bench";
 
@@ -41,32 +41,25 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* one trial (kinematic or dynamic, as the world is): posture, object position and word of a
- * primitive; sense, think, act; returns a checksum so nothing is optimised away */
-static double bench_trial(stWorld *w, const stConfig *cfg, const stSensorDef *sd, const stNetParams *np, const double *q0,
-                          int prim, const double *obj, const double *target, int steps, uint64_t seed) {
-  stNetState ns;
-  st_net_reset(np, &ns);
-  st_world_set_seed(w, seed);
-  st_world_reset(w, q0, obj, target);
-  double in[ST_NET_MAX_IN], out[ST_NET_MAX_OUT], ling[4], sum = 0;
-  st_net_label_input(prim, cfg->network_linguistic_input, ling);
-  /* the main-prim trials' table switch (stage.grasp_table_off_step, move_table_off_step; a
-   * no-op in kinematic mode) */
-  const int off = prim == ST_PRIM_GRASP  ? cfg->stage_grasp_table_off_step
-                  : prim == ST_PRIM_MOVE ? cfg->stage_move_table_off_step
-                                         : -1;
-  int focus_target = 0;
-  for (int t = 0; t < steps && !st_world_unstable(w); t++) {
-    if (t == off) st_world_set_object_table_collision(w, 0);
-    stQuantities q;
-    st_quantities(w, sd, &q);
-    st_sensor_inputs(w, sd, &q, focus_target, t == 0, ling, 0, in, ST_NET_NIN);
-    st_net_step(np, &ns, in, out);
-    focus_target = st_focus_is_target(sd, out[ST_NET_OUT_FOCUS]);
-    st_world_step(w, out);
-    sum += q.d_r + w->contacts.arm_table + w->obj[2];
-  }
+/* the bench's scorer: a checksum of every step's state, so nothing is optimised away; the
+ * episode runs its full length unless the simulation diverges */
+static int sum_step(void *self, stTraceStep *ts) {
+  *(double *)self += ts->q->d_r + ts->world->contacts.arm_table + ts->world->obj[2];
+  return ts->unstable ? ST_END_FAILURE : -1;
+}
+
+/* one episode of the library's loop on the workspace's world for its mode, the network np
+ * hearing the word of primitive prim; returns the checksum */
+static double bench_trial(const stProtocol *p, stWorkspace *ws, const stNetParams *np,
+                          const stEpisodeSpec *e, int prim) {
+  double sum = 0;
+  stNetController nc;
+  const stController ctl = st_net_controller(&nc, np, NULL, 0);
+  const stWords words = {ST_WORDS_FIXED, prim, p->cfg.network_linguistic_input, 0.0};
+  const stScorer sc = {NULL, sum_step, NULL, &sum};
+  char err[256];
+  if (st_episode_run(p, ws, e, &ctl, &words, &sc, NULL, NULL, err, sizeof err))
+    app_die(prog, "%s", err);
   return sum;
 }
 
@@ -86,7 +79,7 @@ static int held_trial(stWorld *w, const stScene *scene, const double *q0, const 
 /* T held trials on the given threads (trial t: move start t mod 4; with solver step the same
  * start gives the same trajectory); returns the elapsed time and counts the balls kept */
 static double held_run(const stRobot *robot, const stScene *scene, const stDynDef *def,
-                       double (*q0)[ST_NPOSTURE][ST_NDOF], int trials, int steps, int threads,
+                       const double (*q0)[ST_NPOSTURE][ST_NDOF], int trials, int steps, int threads,
                        long *kept) {
   double t0 = now();
   long k_sum = 0;
@@ -116,24 +109,29 @@ typedef struct dynStats {
 } dynStats;
 
 /* T dynamic trials on the given threads; returns the elapsed time, fills per_trial */
-static double dyn_run(const stConfig *cfg, const stRobot *robot, const stScene *scene, const stDynDef *def,
-                      const stSensorDef *sd, const stNetParams *np, int ngenome,
-                      double (*q0)[ST_NPOSTURE][ST_NDOF], int trials, int steps, int threads,
-                      double *per_trial, dynStats *stats, stDynInfo *info) {
+static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParams *np, int ngenome,
+                      int trials, int steps, int threads, double *per_trial, dynStats *stats,
+                      stDynInfo *info) {
   double t0 = now();
   long sub = 0, ode = 0, unst = 0;
 #pragma omp parallel num_threads(threads) reduction(+ : sub, ode, unst)
   {
     stWorld *w = NULL;
     char e[256];
-    if (st_world_create_dynamic(robot, scene, def, &w, e, sizeof e) == ST_OK) {
+    if (st_world_create_dynamic(p->robot, &p->scene, def, &w, e, sizeof e) == ST_OK) {
+      stWorkspace ws = {NULL, w, NULL}; /* the episodes run on this world, with its def */
 #pragma omp single
       st_world_dynamic_info(w, info);
 #pragma omp for schedule(dynamic, 4)
       for (int t = 0; t < trials; t++) {
         const int prim = t % ST_NPRIM, k = (t / ST_NPRIM) % ST_NPOSTURE;
-        per_trial[t] = bench_trial(w, cfg, sd, &np[t % ngenome], q0[prim][k], prim, scene->obj_pos[k],
-                                 scene->target[k % 2], steps, (uint64_t)t);
+        stTrialSpec spec;
+        st_trial_spec(p, ST_STAGE_MAIN, 0, prim * ST_NPOSTURE + k, &spec);
+        stEpisodeSpec ep;
+        stWords unused;
+        st_trial_episode(p, &spec, (uint64_t)t, &ep, &unused);
+        ep.steps = steps;
+        per_trial[t] = bench_trial(p, &ws, &np[t % ngenome], &ep, prim);
         stDynInfo in;
         st_world_dynamic_info(w, &in);
         sub += (long)in.substeps * w->step;
@@ -152,17 +150,10 @@ static double dyn_run(const stConfig *cfg, const stRobot *robot, const stScene *
   return now() - t0;
 }
 
-static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int baseline, int threads,
+static int bench_dynamic(const stProtocol *p, const char *baseline_set, int baseline, int threads,
                          int reps, int trials, const stNetParams *np, int ngenome) {
   char err[1024];
-  stRobot *robot = NULL;
-  if (st_robot_create(cfg, &robot, err, sizeof err)) app_die(prog, "%s", err);
-  stScene scene;
-  st_scene_from_config(cfg, &scene);
-  stSensorDef sd;
-  st_sensor_def_from_config(cfg, &sd);
-  static double q0[ST_NPRIM][ST_NPOSTURE][ST_NDOF];
-  if (st_postures_all(robot, &scene, q0, err, sizeof err)) app_die(prog, "%s", err);
+  const stConfig *cfg = &p->cfg;
   stDynDef def, base_def;
   st_dyn_def_from_config(cfg, &def);
   stConfig bcfg = *cfg;
@@ -184,14 +175,14 @@ static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int base
     const int is_base = rr % 2, r = rr / 2; /* interleaved so drifts hit both alike */
     if (is_base && !baseline) continue;
     const double c0 = cpu_now();
-    double dt = dyn_run(cfg, robot, &scene, is_base ? &base_def : &def, &sd, np, ngenome, q0, trials,
-                        steps, threads, per_trial, is_base ? &bst : &st, is_base ? &binfo : &info);
+    double dt = dyn_run(p, is_base ? &base_def : &def, np, ngenome, trials, steps, threads,
+                        per_trial, is_base ? &bst : &st, is_base ? &binfo : &info);
     (is_base ? base : rate)[r] = (double)trials * steps / dt;
     (is_base ? bcpu : cpu)[r] = (double)trials * steps / (cpu_now() - c0);
     if (!is_base) {
       const double c1 = cpu_now();
       held[r] = (double)held_trials * steps /
-                held_run(robot, &scene, &def, q0, held_trials, steps, threads, &kept);
+                held_run(p->robot, &p->scene, &def, p->posture, held_trials, steps, threads, &kept);
       hcpu[r] = (double)held_trials * steps / (cpu_now() - c1);
     }
   }
@@ -224,7 +215,6 @@ static int bench_dynamic(const stConfig *cfg, const char *baseline_set, int base
   free(cpu);
   free(bcpu);
   free(hcpu);
-  st_robot_destroy(robot);
   return 0;
 }
 
@@ -260,14 +250,10 @@ int main(int argc, char **argv) {
   if (reps < 1 || trials < 1 || threads < 0) app_die(prog, "--reps, --trials must be >= 1, --threads >= 0");
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
-  if (threads == 0) threads = cfg.run_threads > 0 ? cfg.run_threads : omp_get_num_procs();
+  threads = st_thread_count(threads, &cfg);
   char err[1024];
-  stRobot *robot = NULL;
-  if (st_robot_create(&cfg, &robot, err, sizeof err)) app_die(prog, "%s", err);
-  stScene scene;
-  st_scene_from_config(&cfg, &scene);
-  stSensorDef sd;
-  st_sensor_def_from_config(&cfg, &sd);
+  stProtocol *p = NULL;
+  if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
   const int steps = 60;
 
   /* random genotypes, decoded once: evaluation is what is measured */
@@ -280,15 +266,18 @@ int main(int argc, char **argv) {
     st_net_decode(NULL, ST_ARCH_BASE, &g, &np[i], NULL, 0);
   }
   if (dynamic) {
-    st_robot_destroy(robot);
-    int rc = bench_dynamic(&cfg, baseline_set, baseline, threads, reps, trials, np, NGENOME);
+    int rc = bench_dynamic(p, baseline_set, baseline, threads, reps, trials, np, NGENOME);
     free(np);
+    st_protocol_destroy(p);
     return rc;
   }
-  double q0[ST_NDOF];
+  stEpisodeSpec ep; /* kinematic: a reach-like start; the object-table switch does not apply */
+  memset(&ep, 0, sizeof ep);
   static const double deg[9] = {0, 0, -30, 30, 0, 60, 0, 0, 0};
-  for (int d = 0; d < 9; d++) q0[d] = st_robot_dof_qhat(robot, d, deg[d] * 3.14159265358979323846 / 180);
-  q0[9] = q0[10] = q0[11] = 0;
+  for (int d = 0; d < 9; d++)
+    ep.qhat0[d] = st_robot_dof_qhat(p->robot, d, deg[d] * 3.14159265358979323846 / 180);
+  ep.steps = steps;
+  ep.table_off_step = -1;
 
   /* the baseline, measured in the same run: every geometry through ODE's narrow phase, no
    * culling (stWorld.reference_contacts); same trials, same results */
@@ -302,12 +291,16 @@ int main(int argc, char **argv) {
     {
       stWorld *w = NULL;
       char e[256];
-      if (st_world_create(robot, &scene, &w, e, sizeof e) == ST_OK) {
+      if (st_world_create(p->robot, &p->scene, &w, e, sizeof e) == ST_OK) {
         w->reference_contacts = reference;
+        stWorkspace ws = {w, NULL, NULL}; /* the episodes run on this world */
 #pragma omp for schedule(dynamic, 16)
-        for (int t = 0; t < trials; t++)
-          per_trial[t] = bench_trial(w, &cfg, &sd, &np[t % NGENOME], q0, ST_PRIM_REACH, scene.obj_pos[t % 4],
-                                     scene.target[t % 2], steps, 0);
+        for (int t = 0; t < trials; t++) {
+          stEpisodeSpec et = ep;
+          memcpy(et.obj, p->scene.obj_pos[t % ST_NPOSTURE], sizeof et.obj);
+          memcpy(et.target, p->scene.target[t % 2], sizeof et.target);
+          per_trial[t] = bench_trial(p, &ws, &np[t % NGENOME], &et, ST_PRIM_REACH);
+        }
         st_world_destroy(w);
       }
     }
@@ -328,6 +321,6 @@ int main(int argc, char **argv) {
   free(base);
   free(per_trial);
   free(np);
-  st_robot_destroy(robot);
+  st_protocol_destroy(p);
   return 0;
 }

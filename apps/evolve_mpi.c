@@ -191,8 +191,7 @@ static void worker_setup(worker *w, const ctrlMsg *m, int foreign, readyMsg *r) 
     w->refused = 1;
     return;
   }
-  const int t = m->threads > 0 ? m->threads : m->cfg.run_threads > 0 ? m->cfg.run_threads
-                                                                     : omp_get_num_procs();
+  const int t = st_thread_count(m->threads, &m->cfg);
   w->threads = g_thread_level >= MPI_THREAD_SERIALIZED ? t : 1;
   r->threads = w->threads;
   r->status = st_protocol_create(&m->cfg, &w->p, r->err, sizeof r->err);

@@ -49,6 +49,7 @@
 #include "trial_page.h"
 #include "selftalk/integrated.h"
 #include "selftalk/posteval.h"
+#include "selftalk/trace.h"
 #include "selftalk/trial.h"
 #include "selftalk/world.h"
 
@@ -105,9 +106,7 @@ typedef struct shapesOut {
 } shapesOut;
 
 typedef struct traceCtx {
-  FILE *f;
-  stNetArch arch;
-  int digits; /* significant digits of the trace's reals: 9, or 17 with --exact */
+  stTraceCsv csv;    /* --out: csv.f NULL without it; csv.digits 9, or 17 with --exact */
   shapesOut *shapes; /* NULL without --shapes */
   trialPage *page;   /* NULL without --html */
   trialPageSummary sum; /* the trial's summary for the page (title and line below) */
@@ -197,60 +196,11 @@ static void shapes_finish(shapesOut *so) {
   fprintf(stderr, "replay: %s: %d shapes at each of %d steps\n", so->path, so->n, so->nwritten);
 }
 
-static void header(FILE *f) {
-  fprintf(f, "step");
-  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",q%d", d);
-  fprintf(f, ",palm_x,palm_y,palm_z,obj_x,obj_y,obj_z,target_x,target_y,target_z");
-  for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",touch%d", i);
-  fprintf(f, ",focus_out,focus_target,ling_reach,ling_open,ling_grasp,ling_move,S,P,success_now,"
-             "event,d_r,d_g,d_m,d_mhat,h,p,touching,lifted,caretaker_word,selftalk_label,lo_reach,"
-             "lo_open,lo_grasp,lo_move,hl_0,hl_1,hl_2,hl_3\n");
-}
-
-/* the words and the linguistic cluster: type A's outputs, type B's hidden-linguistic values */
-static void language(FILE *f, stNetArch arch, const stTraceStep *s) {
-  const int given = st_word_source_given(s->source);
-  fprintf(f, ",%d,%d", given ? s->word : -1, s->label);
-  for (int k = 0; k < 2; k++) {
-    const int show = s->nout >= ST_NET_MAX_OUT && arch == (k ? ST_ARCH_B : ST_ARCH_A);
-    for (int m = 0; m < ST_NET_NLING; m++)
-      if (show) fprintf(f, ",%.17g", s->out[ST_NET_NOUT + m]); /* exact: score can re-read it */
-      else fputc(',', f);
-  }
-}
-
-static void real(const traceCtx *c, double x) { fprintf(c->f, ",%.*g", c->digits, x); }
-
-static void trace_row(const traceCtx *c, const stTraceStep *s) {
-  FILE *f = c->f;
-  const stWorld *w = s->world;
-  const stQuantities *q = s->q;
-  static const char *const events[] = {"", "end_success", "end_failure", "end_quiet"};
-  fprintf(f, "%d", s->step);
-  for (int d = 0; d < ST_NDOF; d++) real(c, w->qhat[d]);
-  const double *points[3] = {q->palm, w->obj, w->target};
-  for (int i = 0; i < 3; i++)
-    for (int k = 0; k < 3; k++) real(c, points[i][k]);
-  for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",%d", w->contacts.touch[i]);
-  real(c, s->out[ST_NET_OUT_FOCUS]);
-  fprintf(f, ",%d", s->focus_target);
-  for (int m = 0; m < ST_NET_NLING; m++) fprintf(f, ",%g", s->in[ST_NET_IN_LING + m]);
-  real(c, s->S);
-  real(c, s->P);
-  fprintf(f, ",%d,%s", s->success_now,
-          s->event >= ST_END_SUCCESS && s->event <= ST_END_QUIET ? events[s->event] : "");
-  const double dist[6] = {q->d_r, q->d_g, q->d_m, q->d_mhat, q->h, q->p};
-  for (int i = 0; i < 6; i++) real(c, dist[i]);
-  fprintf(f, ",%d,%d", q->touching, q->lifted);
-  language(f, c->arch, s);
-  fputc('\n', f);
-}
-
 static void on_step(void *ctx, const stTraceStep *s) {
   const traceCtx *c = ctx;
   if (c->shapes) shapes_step(c->shapes, s->world, s->step);
-  if (c->page) trial_page_step(c->page, s, c->arch);
-  if (c->f) trace_row(c, s);
+  if (c->page) trial_page_step(c->page, s, c->csv.arch);
+  if (c->csv.f) st_trace_csv_row(&c->csv, s);
 }
 
 static const char *const ENDS[] = {"full", "success", "failure", "quiet"};
@@ -271,7 +221,7 @@ static void page_summary(traceCtx *c, const char *fmt, ...) {
 
 /* a primitive trial and its share of F_p (the primitive's N_p spans its trials: four, eight
  * with main-prim's hand-over trials); traced
- * into trace->f when not NULL */
+ * into trace->csv.f when not NULL */
 static void replay_primitive(const stProtocol *p, stStage stage, int generation, int index,
                              int trial, const stNetParams *np, const stForce *force, int nforce,
                              traceCtx *trace) {
@@ -280,12 +230,12 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
   if (t.start_draws)
     fprintf(stderr, "replay: postures.vary_starts: the %s start drawn for generation %d (draw %d)\n",
             st_primitive_name(t.primitive), generation, t.start_draws);
-  trace->arch = np->arch;
-  stWorkspace ws = {NULL, NULL};
+  trace->csv.arch = np->arch;
+  stWorkspace ws = {NULL, NULL, NULL};
   stTrialResult r;
   char err[1024];
   const uint64_t key = st_trial_seed_key(p, generation, index, trial);
-  const stTraceFn fn = trace->f || trace->shapes || trace->page ? on_step : NULL;
+  const stTraceFn fn = trace->csv.f || trace->shapes || trace->page ? on_step : NULL;
   if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, fn, trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
@@ -322,13 +272,13 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
   stIntegratedDef def;
   st_integrated_def_from_config(&p->cfg, &def);
   if (trial >= def.trials) app_die(prog, "--trial %d: expected 0..%d", trial, def.trials - 1);
-  trace->arch = np->arch;
-  stWorkspace ws = {NULL, NULL};
+  trace->csv.arch = np->arch;
+  stWorkspace ws = {NULL, NULL, NULL};
   stIntPlan plan;
   stIntTrialResult r;
   stPredScore pred;
   char err[1024];
-  const stTraceFn fn = trace->f || trace->shapes || trace->page ? on_step : NULL;
+  const stTraceFn fn = trace->csv.f || trace->shapes || trace->page ? on_step : NULL;
   if (st_int_trial_run(p, &def, &ws, generation, index, trial, np, &plan, &r, &pred, fn, trace,
                        err, sizeof err))
     app_die(prog, "%s", err);
@@ -367,12 +317,12 @@ static void replay_posteval(const stProtocol *p, stPostTest test, int caretaker,
   if (st_post_words(&idef, test, caretaker, &words, err, sizeof err)) app_die(prog, "%s", err);
   stPostTrial t;
   st_post_trial(&pd, &p->scene, trial, &t);
-  trace->arch = np->arch;
-  stWorkspace ws = {NULL, NULL};
+  trace->csv.arch = np->arch;
+  stWorkspace ws = {NULL, NULL, NULL};
   stNetController nc;
   const stController ctl = st_net_controller(&nc, np, NULL, 0);
   stPostResult r;
-  const stTraceFn fn = trace->f || trace->shapes || trace->page ? on_step : NULL;
+  const stTraceFn fn = trace->csv.f || trace->shapes || trace->page ? on_step : NULL;
   if (st_post_run_trial(p, &idef, &ws, &t, &ctl, words, &r, fn, trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
@@ -455,7 +405,7 @@ int main(int argc, char **argv) {
   const int post = post_name ? st_post_test_parse(post_name) : -1;
   if (post_name && post < 0)
     app_die(prog, "--posteval '%s': expected integration, robustness or generalisation", post_name);
-  if (caretaker && post != ST_POST_GENERALISATION)
+  if (caretaker && (post < 0 || st_post_test_info((stPostTest)post)->variant != ST_POST_CARETAKER))
     app_die(prog, "--caretaker is the generalisation test's variant: give --posteval generalisation");
   if (post >= 0 && (stage_name || nforce))
     app_die(prog, "--posteval replays a post-evaluation trial: --stage and --force apply to primitive trials");
@@ -492,10 +442,10 @@ int main(int argc, char **argv) {
   if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);
   static traceCtx trace; /* static: its summary buffers are large */
-  trace.arch = arch;
-  trace.digits = digits;
-  if (out && !(trace.f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
-  if (trace.f) header(trace.f);
+  trace.csv.arch = arch;
+  trace.csv.digits = digits;
+  if (out && !(trace.csv.f = fopen(out, "w"))) app_die(prog, "%s: cannot write", out);
+  if (trace.csv.f) st_trace_csv_header(&trace.csv);
   if (so.path) trace.shapes = shapes_open(&so, p, digits);
   if (html) {
     trace.page = trial_page_open(prog, html, three, p);
@@ -504,7 +454,7 @@ int main(int argc, char **argv) {
   if (post >= 0) replay_posteval(p, (stPostTest)post, caretaker, trial, &np, &trace);
   else if (integrated) replay_integrated(p, generation, index, trial, &np, &trace);
   else replay_primitive(p, stage, generation, index, trial, &np, force, nforce, &trace);
-  if (trace.f && fclose(trace.f) != 0) app_die(prog, "%s: write error", out);
+  if (trace.csv.f && fclose(trace.csv.f) != 0) app_die(prog, "%s: write error", out);
   if (trace.shapes) shapes_finish(trace.shapes);
   if (trace.page) trial_page_finish(trace.page, &trace.sum);
   st_protocol_destroy(p);

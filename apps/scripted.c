@@ -13,20 +13,20 @@
  * trials are those of generation 0 (their random offsets), scored by the library; steps is
  * the number of control steps simulated; integrated trials last at most integrated.steps
  * (240: 12 s). --trace DIR
- * writes DIR/main_PRIMITIVE_K.csv and DIR/integrated_K.csv, one row per step: qhat and the
- * commands y, palm centre and normal z, object, target, touch sensors on the object, focus
- * output, the word given, S, P, success_now, end event, the fitness quantities, the contact
- * flags and the controller's phase. --only runs the trials whose file name (without .csv)
+ * writes DIR/main_PRIMITIVE_K.csv and DIR/integrated_K.csv, one row per step: the trace CSV
+ * of replay --out (selftalk/trace.h, which tools/draw_trial.py and tools/trial_video.py read)
+ * with a last column, the controller's phase. --only runs the trials whose file name (without .csv)
  * starts with NAME. --threads (default run.threads, 0 = one per core) changes no result. */
 #include <errno.h>
-#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 #include "app_common.h"
+#include "selftalk/evolve.h"
 #include "selftalk/scripted.h"
+#include "selftalk/trace.h"
 
 static const char *prog = "scripted";
 static const char *usage = "usage: scripted [--config FILE] [--set section.key=value]... "
@@ -34,44 +34,8 @@ static const char *usage = "usage: scripted [--config FILE] [--set section.key=v
 
 enum { NMAIN = ST_PRIM_TRIALS, NINT = 2 * ST_NPOSTURE, NALL = NMAIN + NINT };
 
-typedef struct traceCtx {
-  FILE *f;
-  const stScripted *s;
-} traceCtx;
-
-static void header(FILE *f) {
-  fprintf(f, "step");
-  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",q%d", d);
-  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",y%d", d);
-  fprintf(f, ",palm_x,palm_y,palm_z,nz,obj_x,obj_y,obj_z,target_x,target_y,target_z");
-  for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",touch%d", i);
-  fprintf(f, ",focus_out,word,S,P,success_now,event,d_r,d_g,d_m,d_mhat,h,p,touching,lifted,"
-             "object_table,arm_table,phase\n");
-}
-
-static void on_step(void *ctx, const stTraceStep *s) {
-  FILE *f = ((traceCtx *)ctx)->f;
-  const stWorld *w = s->world;
-  const stQuantities *q = s->q;
-  fprintf(f, "%d", s->step);
-  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",%.5f", w->qhat[d]);
-  for (int d = 0; d < ST_NDOF; d++) fprintf(f, ",%.5f", s->out[d]);
-  fprintf(f, ",%.5f,%.5f,%.5f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f", q->palm[0], q->palm[1],
-          q->palm[2], q->normal[2], w->obj[0], w->obj[1], w->obj[2], w->target[0], w->target[1],
-          w->target[2]);
-  for (int i = 0; i < ST_NTOUCH; i++) fprintf(f, ",%d", w->contacts.touch_object[i]);
-  const int word = s->word;
-  fprintf(f, ",%.3f,%s,%.5f,%.5f,%d,%s,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%d,%d,%d,%d,%s\n",
-          s->out[ST_NET_OUT_FOCUS], word >= 0 ? st_primitive_name(word) : "", s->S, s->P,
-          s->success_now,
-          s->event == ST_END_SUCCESS   ? "end_success"
-          : s->event == ST_END_FAILURE ? "end_failure"
-          : s->event == ST_END_QUIET   ? "end_quiet"
-                                       : "",
-          q->d_r, q->d_g, q->d_m, q->d_mhat, q->h, q->p, q->touching, q->lifted,
-          w->contacts.object_table, w->contacts.arm_table,
-          st_scripted_phase(((traceCtx *)ctx)->s));
-}
+/* the trace's phase column: what the controller is doing */
+static const char *phase_of(const void *s) { return st_scripted_phase(s); }
 
 static void trial_name(int i, char *name, size_t n) {
   if (i < NMAIN) snprintf(name, n, "main_%s_%d", st_primitive_name(i / ST_NPOSTURE), i % ST_NPOSTURE);
@@ -103,8 +67,7 @@ int main(int argc, char **argv) {
   }
   stConfig cfg;
   app_config_resolve(&ca, &cfg, prog);
-  if (threads < 0) threads = cfg.run_threads;
-  if (threads <= 0) threads = omp_get_num_procs();
+  threads = st_thread_count(threads, threads < 0 ? &cfg : NULL); /* --threads 0: one per core */
   if (trace_dir && mkdir(trace_dir, 0777) != 0 && errno != EEXIST)
     app_die(prog, "%s: cannot create the directory", trace_dir);
   char err[1024];
@@ -122,7 +85,7 @@ int main(int argc, char **argv) {
   }
 #pragma omp parallel num_threads(threads) reduction(+ : failed_setup)
   {
-    stWorkspace ws = {NULL, NULL};
+    stWorkspace ws = {NULL, NULL, NULL};
     stScripted *s = NULL;
     char terr[1024];
     if (st_scripted_create(p, &s, terr, sizeof terr)) failed_setup++;
@@ -131,16 +94,16 @@ int main(int argc, char **argv) {
       if (!run[i] || !s) continue;
       char name[64], path[1040];
       trial_name(i, name, sizeof name);
-      traceCtx tc = {NULL, s};
+      stTraceCsv tc = {NULL, 9, ST_ARCH_BASE, phase_of, s};
       if (trace_dir) {
         snprintf(path, sizeof path, "%s/%s.csv", trace_dir, name);
         if (!(tc.f = fopen(path, "w"))) snprintf(why[i], sizeof why[i], "%s: cannot write", path);
-        else header(tc.f);
+        else st_trace_csv_header(&tc);
       }
       stStatus st;
       if (i < NMAIN) {
         stTrialResult r;
-        st = st_scripted_main_trial(p, &ws, s, i, &r, tc.f ? on_step : NULL, &tc, terr, sizeof terr);
+        st = st_scripted_main_trial(p, &ws, s, i, &r, tc.f ? st_trace_csv_fn : NULL, &tc, terr, sizeof terr);
         if (!st) {
           success[i] = r.success;
           steps[i] = (int)r.steps_run;
@@ -148,7 +111,7 @@ int main(int argc, char **argv) {
       } else {
         const int k = (i - NMAIN) / 2, t = (i - NMAIN) % 2;
         stIntTrialResult r;
-        st = st_scripted_integrated(p, &ws, s, k, t, &r, tc.f ? on_step : NULL, &tc, terr,
+        st = st_scripted_integrated(p, &ws, s, k, t, &r, tc.f ? st_trace_csv_fn : NULL, &tc, terr,
                                     sizeof terr);
         if (!st) {
           success[i] = r.success;

@@ -3,11 +3,8 @@
 # with pkg-config, once with the whole library and once with the simulator-free core.
 set -euo pipefail
 BUILD=${BUILD:-build}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0 fail=0
-ok() { echo "check_install: $1 ok"; pass=$((pass + 1)); }
-ko() { echo "check_install: $1 FAILED"; fail=$((fail + 1)); }
+CHECK=check_install
+source "$(dirname "$0")/check_lib.sh"
 
 make --no-print-directory -s install PREFIX="$tmp/prefix" BUILD="$BUILD" >/dev/null
 export PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig"

@@ -1,4 +1,4 @@
-# Helpers shared by the check_*.sh scripts that run evolve. Sourced after setting CHECK to the
+# Helpers shared by the check_*.sh scripts. Sourced after setting CHECK to the
 # script's name: a temporary directory $tmp (removed on exit), the pass / fail counters and
 # ok NAME / ko NAME [DETAIL], which print "CHECK: NAME ok" or "CHECK: NAME FAILED: DETAIL".
 APPDIR=${APPDIR:-apps}

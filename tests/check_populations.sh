@@ -6,21 +6,20 @@
 # still going (prims_s<N>_run/, resumable) are not finished runs and are left out.
 set -uo pipefail
 APPDIR=${APPDIR:-apps}
-pass=0 fail=0
-ok() { echo "ok   $1"; pass=$((pass + 1)); }
-bad() { echo "FAIL $1"; fail=$((fail + 1)); }
+CHECK=check_populations
+source "$(dirname "$0")/check_lib.sh"
 
 runs=()
 for d in data/evolved/prims_s*/; do case "$d" in *_run/) ;; *) runs+=("$d") ;; esac; done
 if [ ${#runs[@]} = 0 ] || [ ! -d "${runs[0]}" ]; then
-  bad "no committed primitive run in data/evolved/prims_s*/ (expected at least one)"
+  ko "no committed primitive run in data/evolved/prims_s*/ (expected at least one)"
 fi
 for d in "${runs[@]}"; do
   [ -d "$d" ] || continue
   d=${d%/}
   missing=""
   for f in config.ini fitness.csv population.genome; do [ -f "$d/$f" ] || missing="$missing $f"; done
-  if [ -n "$missing" ]; then bad "$d: missing$missing"; continue; fi
+  if [ -n "$missing" ]; then ko "$d: missing$missing"; continue; fi
   last=$(tail -n 1 "$d/fitness.csv" | cut -d, -f1)
   solved=0 lines=""
   for k in $(seq 0 15); do
@@ -31,7 +30,7 @@ for d in "${runs[@]}"; do
   if [ "$solved" = 16 ]; then
     ok "$d: the final best replays 16/16 main-prim trials (generation $last)"
   else
-    bad "$d: the final best replays $solved/16 (failed:$lines)"
+    ko "$d: the final best replays $solved/16 (failed:$lines)"
   fi
 done
 echo "check_populations: $pass passed, $fail failed"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The scripted controller (apps/scripted, lib/task/scripted.c) proves every primitive physically
+# The scripted controller (apps/scripted, lib/episode/scripted.c) proves every primitive physically
 # achievable in dynamic mode: the 16 main-prim trials (reach, open, grasp, move from each
 # initial posture, scored by the library) and the 8 integrated trials (4 reach postures x 2
 # targets, the caretaker's words, 12 s) must all succeed. One check per trial line, plus: the
@@ -7,37 +7,34 @@
 # not depend on the thread count, and --trace writes a per-step CSV.
 set -uo pipefail
 APPDIR=${APPDIR:-apps}
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-ko() { echo "check_scripted: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+CHECK=check_scripted
+source "$(dirname "$0")/check_lib.sh"
 
 "$APPDIR/scripted" --threads 2 >"$tmp/out2" 2>"$tmp/err2"
 rc=$?
 cat "$tmp/out2"
 lines=$(grep -c '^trial ' "$tmp/out2")
-if [ "$lines" = 24 ]; then ok; else ko "24 trial lines" "got $lines"; fi
+if [ "$lines" = 24 ]; then ok "24 trial lines"; else ko "24 trial lines" "got $lines"; fi
 while read -r line; do
   name=$(echo "$line" | awk '{print $2, $3, $4}')
   if echo "$line" | grep -qE '^trial (main-prim (reach|open|grasp|move) [0-3]|integrated move-object-to-target [0-7]) success=1 steps=[0-9]+$'; then
-    ok
+    ok "$name"
   else
     ko "$name" "$line"
   fi
 done < <(grep '^trial ' "$tmp/out2")
 if grep -qE '^scripted: 24 passed, 0 failed$' "$tmp/out2" && [ "$rc" = 0 ]; then
-  ok
+  ok "summary and exit status"
 else
   ko "summary and exit status" "exit $rc, $(tail -1 "$tmp/out2") $(cat "$tmp/err2")"
 fi
 
 "$APPDIR/scripted" --threads 1 >"$tmp/out1" 2>&1
-if cmp -s "$tmp/out1" "$tmp/out2"; then ok; else ko "same results on 1 and 2 threads" "$(diff "$tmp/out1" "$tmp/out2" | head -4)"; fi
+if cmp -s "$tmp/out1" "$tmp/out2"; then ok "same results on 1 and 2 threads"; else ko "same results on 1 and 2 threads" "$(diff "$tmp/out1" "$tmp/out2" | head -4)"; fi
 
 if "$APPDIR/scripted" --only main_grasp_0 --trace "$tmp/trace" >/dev/null 2>&1 &&
    [ "$(wc -l <"$tmp/trace/main_grasp_0.csv")" = 81 ]; then
-  ok
+  ok "--trace writes one row per step"
 else
   ko "--trace writes one row per step" "$(ls "$tmp/trace" 2>&1 | head -3)"
 fi

@@ -4,9 +4,8 @@
 # Also: the 16 initial postures pass, and an out-of-range joint is refused naming its range.
 set -uo pipefail
 APPDIR=${APPDIR:-apps}
-pass=0 fail=0
-ok() { echo "check_simprobe: $1 ok"; pass=$((pass + 1)); }
-ko() { echo "check_simprobe: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
+CHECK=check_simprobe
+source "$(dirname "$0")/check_lib.sh"
 
 configs="0,0,0,0,0,15,0,0,0 0,0,-30,30,0,60,0,0,0 20,30,-60,90,40,100,-45,-30,10 -10,-10,-95,10,-37,15,90,-90,40 40,40,5,160,80,106,-90,0,-20 10,5,-45,60,20,50,30,-60,25"
 for c in $configs; do

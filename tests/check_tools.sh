@@ -3,11 +3,9 @@
 # known (which generation completes each stage, how many solved spans the plot draws), and
 # grasp_probe's trace against free fall worked out by hand.
 set -u
-pass=0 fail=0
-ok() { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; }
-t=$(mktemp -d)
-trap 'rm -rf "$t"' EXIT
+CHECK=check_tools
+source "$(dirname "$0")/check_lib.sh"
+t=$tmp
 
 # run a: simple-prim completes at generation 2 (first row with all_success >= 5), main-prim at 5
 mk() { # DIR then rows "gen stage all_success best trials16"
@@ -36,33 +34,33 @@ mk "$t/c" "0 simple-prim 3 10 0000000000000000" "1 simple-prim 6 10 111111111111
 
 out=$(python3 tools/runs_summary.py "$t/a" "$t/b" "$t/c" 2>&1)
 row() { echo "$out" | grep "^$1,"; }
-[ "$(row "$t/a" | cut -d, -f2-5)" = "7,2,5,main-prim" ] && ok "runs_summary: run a completes at 2 and 5, 7 generations" || bad "runs_summary run a: $(row "$t/a")"
-[ "$(row "$t/b" | cut -d, -f3-4)" = "0," ] && ok "runs_summary: run b has no main-prim completion" || bad "runs_summary run b: $(row "$t/b")"
-[ "$(row "$t/a" | cut -d, -f8)" = "1111111111111110" ] && ok "runs_summary: final best's trials" || bad "runs_summary trials: $(row "$t/a")"
+[ "$(row "$t/a" | cut -d, -f2-5)" = "7,2,5,main-prim" ] && ok "runs_summary: run a completes at 2 and 5, 7 generations" || ko "runs_summary run a: $(row "$t/a")"
+[ "$(row "$t/b" | cut -d, -f3-4)" = "0," ] && ok "runs_summary: run b has no main-prim completion" || ko "runs_summary run b: $(row "$t/b")"
+[ "$(row "$t/a" | cut -d, -f8)" = "1111111111111110" ] && ok "runs_summary: final best's trials" || ko "runs_summary trials: $(row "$t/a")"
 # simple-prim completions 2, 0, 1: median 1, inclusive quartiles 0.5 and 1.5
-echo "$out" | grep -q "^# simple_prim_done: 3 of 3 runs, median 1 (quartiles 0.5, 1.5)" && ok "runs_summary: median and quartiles" || bad "runs_summary stats: $out"
-echo "$out" | grep -q "^# main_prim_done: 2 of 3 runs, median 4.5" && ok "runs_summary: main-prim over the runs that completed it" || bad "runs_summary main: $out"
+echo "$out" | grep -q "^# simple_prim_done: 3 of 3 runs, median 1 (quartiles 0.5, 1.5)" && ok "runs_summary: median and quartiles" || ko "runs_summary stats: $out"
+echo "$out" | grep -q "^# main_prim_done: 2 of 3 runs, median 4.5" && ok "runs_summary: main-prim over the runs that completed it" || ko "runs_summary main: $out"
 
-python3 tools/plot_fitness.py "$t/a/fitness.csv" -o "$t/a.svg" >/dev/null 2>&1 || bad "plot_fitness exit"
+python3 tools/plot_fitness.py "$t/a/fitness.csv" -o "$t/a.svg" >/dev/null 2>&1 || ko "plot_fitness exit"
 # trial spans: t0 solved 0..6 (1 span); t1 1..6 (1); t2,t3 2..6; t4..7: 2, then 4..6 -> 2 spans each;
 # t8..14: 2, 5 -> 2 spans each; t15: 2, 5 -> 2 spans; total 1+1+2+4*2+7*2+2 = 28
 n=$(grep -c '<rect x=' "$t/a.svg")
 # 3 panel frames + 28 spans
-[ "$n" = 31 ] && ok "plot_fitness: 28 solved spans and 3 panels" || bad "plot_fitness rects: $n"
-[ "$(grep -c '<polyline' "$t/a.svg")" = 6 ] && ok "plot_fitness: best, mean and four F_p lines" || bad "plot_fitness lines"
-grep -q '>main-prim</text>' "$t/a.svg" && ok "plot_fitness: stage change marked" || bad "plot_fitness stage mark"
+[ "$n" = 31 ] && ok "plot_fitness: 28 solved spans and 3 panels" || ko "plot_fitness rects: $n"
+[ "$(grep -c '<polyline' "$t/a.svg")" = 6 ] && ok "plot_fitness: best, mean and four F_p lines" || ko "plot_fitness lines"
+grep -q '>main-prim</text>' "$t/a.svg" && ok "plot_fitness: stage change marked" || ko "plot_fitness stage mark"
 python3 tools/plot_fitness.py "$t/a/fitness.csv" --from 100 >/dev/null 2>"$t/err"; rc=$?
-[ $rc != 0 ] && grep -q "no generation in the requested range" "$t/err" && ok "plot_fitness: empty range refused" || bad "plot_fitness empty range rc=$rc"
+[ $rc != 0 ] && grep -q "no generation in the requested range" "$t/err" && ok "plot_fitness: empty range refused" || ko "plot_fitness empty range rc=$rc"
 printf 'gen,x\n1,2\n' >"$t/bad.csv"
 python3 tools/plot_fitness.py "$t/bad.csv" >/dev/null 2>"$t/err"; rc=$?
-[ $rc != 0 ] && grep -q "bad.csv: expected a fitness.csv" "$t/err" && ok "plot_fitness: wrong columns refused, naming the file" || bad "plot_fitness bad csv rc=$rc"
+[ $rc != 0 ] && grep -q "bad.csv: expected a fitness.csv" "$t/err" && ok "plot_fitness: wrong columns refused, naming the file" || ko "plot_fitness bad csv rc=$rc"
 # a config.ini beside fitness.csv sets the completion threshold: with 6, run c's main-prim
 # (at most 5 genotypes solving everything) is not complete, its simple-prim still at 1
 cp -r "$t/c" "$t/c6" && printf '[ga]\n# comment\nsuccess_genotypes = 6\n' > "$t/c6/config.ini"
 [ "$(python3 tools/runs_summary.py "$t/c6" | grep "^$t/c6," | cut -d, -f3-4)" = "1," ] &&
-  ok "runs_summary: ga.success_genotypes of config.ini" || bad "runs_summary threshold: $(python3 tools/runs_summary.py "$t/c6")"
+  ok "runs_summary: ga.success_genotypes of config.ini" || ko "runs_summary threshold: $(python3 tools/runs_summary.py "$t/c6")"
 python3 tools/runs_summary.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
-[ $rc != 0 ] && grep -q "nope/fitness.csv" "$t/err" && ok "runs_summary: missing run refused, naming the file" || bad "runs_summary missing rc=$rc"
+[ $rc != 0 ] && grep -q "nope/fitness.csv" "$t/err" && ok "runs_summary: missing run refused, naming the file" || ko "runs_summary missing rc=$rc"
 # PNG (matplotlib, Debian's python3): a 1000-pixel-wide PNG; and without matplotlib a clear refusal
 PY=${PYTHON:-/usr/bin/python3}
 "$PY" tools/plot_fitness.py "$t/a/fitness.csv" -o "$t/a.png" >/dev/null 2>"$t/err"
@@ -70,13 +68,13 @@ if [ "$("$PY" -c 'import struct, sys; d = open(sys.argv[1], "rb").read(24)
 print(d[:8] == b"\x89PNG\r\n\x1a\n", struct.unpack(">I", d[16:20])[0])' "$t/a.png" 2>&1)" = "True 1000" ]; then
   ok "plot_fitness: PNG written (1000 px wide)"
 else
-  bad "plot_fitness PNG: $(cat "$t/err")"
+  ko "plot_fitness PNG: $(cat "$t/err")"
 fi
 "$PY" -c 'import runpy, sys; sys.modules["matplotlib"] = None; sys.argv = sys.argv[1:]
 runpy.run_path(sys.argv[0], run_name="__main__")' tools/plot_fitness.py "$t/a/fitness.csv" -o "$t/b.png" \
   >/dev/null 2>"$t/err"; rc=$?
 [ $rc != 0 ] && grep -q "b.png: PNG needs matplotlib" "$t/err" && [ ! -e "$t/b.png" ] &&
-  ok "plot_fitness: PNG without matplotlib refused, naming the fix" || bad "plot_fitness no matplotlib rc=$rc $(cat "$t/err")"
+  ok "plot_fitness: PNG without matplotlib refused, naming the fix" || ko "plot_fitness no matplotlib rc=$rc $(cat "$t/err")"
 # run_report (the end of make run): run a completes simple-prim at 2 (rows 0-2) and main-prim at
 # 5 (rows 3-5); its last best (generation 6) solves all but trial 15; the plot is drawn beside it
 out=$("$PY" tools/run_report.py "$t/a" 2>&1)
@@ -87,14 +85,14 @@ if grep -qF "simple-prim: complete at generation 2 (5 genotypes solve every tria
    [ -s "$t/a/fitness.png" ]; then
   ok "run_report: stage completions, the best's successes, the plot and its command"
 else
-  bad "run_report: $out"
+  ko "run_report: $out"
 fi
 # with ga.success_genotypes = 9 simple-prim never completes (at most 5) and main-prim does at 6
 printf '[ga]\nsuccess_genotypes = 9\n' > "$t/a/config.ini"
 out=$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)
 grep -qF "simple-prim: not complete after 3 generations (at most 5 of the 9 genotypes needed" <<<"$out" &&
   grep -qF "main-prim: complete at generation 6 (9 genotypes" <<<"$out" &&
-  ok "run_report: the threshold of config.ini" || bad "run_report threshold: $out"
+  ok "run_report: the threshold of config.ini" || ko "run_report threshold: $out"
 # grasp_probe --trace: a hand held 5 cm above the ball that never closes leaves it alone, so once
 # the table collision goes off after step 39 the ball free-falls by ODE's semi-implicit Euler,
 # g h^2 n (n + 1) / 2 after n sub-steps of h = 0.01 s: 0.01471 m after step 40 (n = 5), 0.05396 m
@@ -109,10 +107,10 @@ if awk -v r="$(z 39)" -v a="$(z 40)" -v b="$(z 41)" 'BEGIN {
    echo "$out" | grep -q "^trial 0: success 0, 42 steps$"; then
   ok "grasp_probe: untouched ball free-falls from step 40 and the trial ends at 42 steps"
 else
-  bad "grasp_probe free fall: $(echo "$out" | sed -n '40,43p')"
+  ko "grasp_probe free fall: $(echo "$out" | sed -n '40,43p')"
 fi
 "$gp" --trace 0,0,2,0 >/dev/null 2>"$t/err"; rc=$?
-[ $rc = 2 ] && grep -q "expected GAP,DX,OPPOSE,K" "$t/err" && ok "grasp_probe: bad --trace refused" || bad "grasp_probe bad trace rc=$rc"
+[ $rc = 2 ] && grep -q "expected GAP,DX,OPPOSE,K" "$t/err" && ok "grasp_probe: bad --trace refused" || ko "grasp_probe bad trace rc=$rc"
 # grasp_probe --hand: fingertips in the palm frame. Open hand: iKin's FK puts the index, middle,
 # ring and little tips 0.074, 0.087, 0.076, 0.067 m along the fingers from the arm's end-effector
 # (reference/icub_facts.md §2.3), and the palm centre sits 0.0134 m behind it (gen_icub_urdf.py).
@@ -129,10 +127,10 @@ if awk -v i="$(tipx index)" -v m="$(tipx middle)" -v r="$(tipx ring)" -v l="$(ti
      exit !(t[3] > 0.07 && t[1] < 0.015 - 0.035 && t[1] > -0.015 - 0.035 && t[2] < 0.015 && t[2] > -0.015) }'; then
   ok "grasp_probe --hand: open-hand tips match iKin's FK; the opposed thumb hangs 3.5 cm behind the palm centre"
 else
-  bad "grasp_probe --hand: $out / thumb opposed: $opp"
+  ko "grasp_probe --hand: $out / thumb opposed: $opp"
 fi
 "$gp" --hand 1,2,0 >/dev/null 2>"$t/err"; rc=$?
-[ $rc = 2 ] && grep -q "expected OPPOSE,THUMB,FINGERS, each in 0..1" "$t/err" && ok "grasp_probe: bad --hand refused" || bad "grasp_probe bad hand rc=$rc"
+[ $rc = 2 ] && grep -q "expected OPPOSE,THUMB,FINGERS, each in 0..1" "$t/err" && ok "grasp_probe: bad --hand refused" || ko "grasp_probe bad hand rc=$rc"
 # grasp_probe --basin: the default hand holds the ball in at least 10 % of the 720 closings
 # (issue 12's target; 84 when measured, data/README.md §3b) and every hold has its line
 OMP_NUM_THREADS=2 "$gp" --basin > "$t/basin2" 2>&1
@@ -141,7 +139,7 @@ if awk '/^basin held=/ { split($2, h, "="); split($3, n, "="); held = h[2]; tota
         END { exit !(total == 720 && held >= 72 && lines == held) }' "$t/basin2"; then
   ok "grasp_probe --basin: $(tail -1 "$t/basin2") (>= 10 %)"
 else
-  bad "grasp_probe --basin: $(tail -1 "$t/basin2")"
+  ko "grasp_probe --basin: $(tail -1 "$t/basin2")"
 fi
 # screen_report.py: a hand-made screen whose row is known: 3 generations at 40 s (elapsed
 # 0:02:00 after generation 2), the last row's 15 fixed and 2 hand-over trials solved, three
@@ -170,9 +168,9 @@ out=$(python3 tools/screen_report.py "$s" 2>&1)
 if grep -qF '| `handover-pop-s1` | 3 | 40 s | 15/16, hand-over 2/12 | 3 of 12 | 0 | 1 of 3 | `ro` 9, `rogm` 3 | 1 | 0 of 12 |' <<<"$out"; then
   ok "screen_report: the row of a hand-made screen"
 else
-  bad "screen_report: $out"
+  ko "screen_report: $out"
 fi
 python3 tools/screen_report.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
-[ $rc = 1 ] && grep -q "screen_report: $t/nope/fitness.csv" "$t/err" && ok "screen_report: a missing screen named" || bad "screen_report missing rc=$rc $(cat "$t/err")"
+[ $rc = 1 ] && grep -q "screen_report: $t/nope/fitness.csv" "$t/err" && ok "screen_report: a missing screen named" || ko "screen_report missing rc=$rc $(cat "$t/err")"
 echo "check_tools: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -87,7 +87,7 @@ static void test_evaluator_same_files(void) {
   CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_tmpdir(d1, sizeof d1));
   CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_tmpdir(d2, sizeof d2));
   CU_ASSERT_EQUAL_FATAL(run_with(&c, d1, NULL, err, sizeof err), ST_OK);
-  reverser r = {NULL, {0}, {NULL, NULL}, 0, -1, -1};
+  reverser r = {NULL, {0}, {NULL, NULL, NULL}, 0, -1, -1};
   stEvolveEvaluator ev = {reverse_eval, &r};
   CU_ASSERT_EQUAL(run_with(&c, d2, &ev, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL(r.calls, GENS);
@@ -102,7 +102,7 @@ static void test_evaluator_breakdown(void) {
   small_config(&c);
   char d[512], err[1024] = "";
   CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_tmpdir(d, sizeof d));
-  reverser r = {NULL, {0}, {NULL, NULL}, 0, 1, -1};
+  reverser r = {NULL, {0}, {NULL, NULL, NULL}, 0, 1, -1};
   stEvolveEvaluator ev = {reverse_eval, &r};
   CU_ASSERT_EQUAL(run_with(&c, d, &ev, err, sizeof err), ST_ERR_IO);
   ST_ASSERT_CONTAINS(err, "test evaluator: lost at generation 1");
@@ -122,7 +122,7 @@ static void test_evaluator_bad_task(void) {
   small_config(&c);
   char d[512], err[1024] = "";
   CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_tmpdir(d, sizeof d));
-  reverser r = {NULL, {0}, {NULL, NULL}, 0, -1, 5};
+  reverser r = {NULL, {0}, {NULL, NULL, NULL}, 0, -1, 5};
   stEvolveEvaluator ev = {reverse_eval, &r};
   CU_ASSERT_EQUAL(run_with(&c, d, &ev, err, sizeof err), ST_ERR_RANGE);
   ST_ASSERT_CONTAINS(err, "evaluating genotype 5: made up");

@@ -141,7 +141,7 @@ static void test_handover_rollin(void) {
   stNetParams np;
   CU_ASSERT_PTR_NOT_NULL_FATAL(p);
   CU_ASSERT_FATAL(evolved_net(&np));
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   char err[512] = "";
   int handed = 0;
   for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
@@ -205,7 +205,7 @@ static void test_handover_fallback(void) {
   stNetParams np;
   CU_ASSERT_PTR_NOT_NULL_FATAL(p);
   CU_ASSERT_FATAL(evolved_net(&np));
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   char err[512] = "";
   for (int j = 0; j < ST_HANDOVER_TRIALS; j += 3) {
     stTrialSpec t, fb;
@@ -237,7 +237,7 @@ static void test_handover_fitness(void) {
   CU_ASSERT_PTR_NOT_NULL_FATAL(p);
   CU_ASSERT_PTR_NOT_NULL_FATAL(off);
   CU_ASSERT_FATAL(evolved_net(&np));
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   char err[512] = "";
   const int gen = 1, ind = 5;
   stEvaluation e, e0;
@@ -306,7 +306,7 @@ static void test_chain_fitness(void) {
   CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
   stNetParams np;
   CU_ASSERT_FATAL(evolved_net(&np));
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   const int gen = 2, ind = 3;
   stEvaluation e, e0;
   CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);

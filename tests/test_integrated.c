@@ -356,7 +356,7 @@ static void test_int_selftalk_loop(void) {
   int labels[8];
   stController ctl = {NULL, talker_act, ST_NET_MAX_IN, &tk, ST_NET_MAX_OUT, 1};
   stScorer sc = {NULL, nothing_step, NULL, labels};
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   const stWordSource sources[2] = {ST_WORDS_SELFTALK, ST_WORDS_CARETAKER};
   for (int k = 0; k < 2; k++) {
     memset(&tk, 0, sizeof tk);

@@ -260,7 +260,7 @@ static void test_post_scripted_trials(void) {
   const stController ctl = st_scripted_controller(sc);
   stIntegratedDef idef;
   st_integrated_def_from_config(&fx->cfg, &idef);
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   stPostDef d;
   st_post_def_from_config(&fx->cfg, ST_POST_INTEGRATION, &d);
   for (int i = 0; i < 4; i++) {

@@ -86,7 +86,7 @@ int main(int argc, char **argv) {
   const int n = o.count >= 0 && o.count < set.count ? o.count
                 : cfg.ga_population < set.count ? cfg.ga_population : set.count;
   double *cpu = calloc((size_t)n + 1, sizeof *cpu);
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   stEvolveTask t;
   stEvolveResult r;
   memset(&t, 0, sizeof t);

@@ -136,7 +136,7 @@ static int basin(const stProtocol *p, const probeOptions *o0) {
   int fail = 0;
 #pragma omp parallel
   {
-    stWorkspace ws = {NULL, NULL};
+    stWorkspace ws = {NULL, NULL, NULL};
 #pragma omp for schedule(dynamic)
     for (int i = 0; i < N; i++) {
       int j = i;
@@ -266,7 +266,7 @@ int main(int argc, char **argv) {
   }
   stProtocol *p = NULL;
   if (st_protocol_create(&cfg, &p, err, sizeof err)) die("%s", err);
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   int rc = 0;
   if (do_basin && (trace || hand || o.dy != 0.0 || o.thumb_flex != 1.0 || o.finger_flex != 1.0 ||
                    o.close_step != 30))

@@ -43,10 +43,12 @@ typedef struct stProtocol {
 stStatus st_protocol_create(const stConfig *cfg, stProtocol **protocol, char *err, size_t errsz);
 void st_protocol_destroy(stProtocol *protocol); /* nullable */
 
-/* Per-thread scratch: the worlds of each mode, created on first use. */
+/* Per-thread scratch: the worlds of each mode, created on first use, and the trial table of
+ * the last generation evaluated (selftalk/trial.h), built once for all its individuals. */
 typedef struct stWorkspace {
   stWorld *kin;
   stWorld *dyn;
+  struct stTrialTable *trials;
 } stWorkspace;
 
 void st_workspace_free(stWorkspace *ws);

@@ -31,6 +31,10 @@ extern "C" {
 
 typedef struct stEvolveEvaluator stEvolveEvaluator;
 
+/* The threads to run on, the rule of every threaded runner and app: `requested` when > 0,
+ * else run.threads when cfg (nullable: none) sets it > 0, else one per core. */
+int st_thread_count(int requested, const stConfig *cfg);
+
 typedef struct stEvolveDef {
   const stConfig *cfg;
   const char *out_dir;

@@ -8,22 +8,11 @@
 
 #include "selftalk/config.h"
 #include "selftalk/sensors.h"
+#include "selftalk/study.h" /* the primitives and stages */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* Primitives, in the order of the linguistic inputs (SPEC §4). */
-enum { ST_PRIM_REACH = 0, ST_PRIM_OPEN, ST_PRIM_GRASP, ST_PRIM_MOVE, ST_NPRIM };
-
-/* "reach", "open", "grasp", "move"; "?" for anything else. */
-const char *st_primitive_name(int primitive);
-
-/* The stages whose trials these functions score. */
-typedef enum stStage { ST_STAGE_SIMPLE = 0, ST_STAGE_MAIN, ST_STAGE_COUNT } stStage;
-
-/* "simple-prim", "main-prim". */
-const char *st_stage_name(stStage stage);
 
 /* Protocol numbers of the fitness (keys fitness.*; defaults are the thesis's). */
 typedef struct stFitnessDef {

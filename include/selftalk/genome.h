@@ -12,6 +12,7 @@
 
 #include "selftalk/base.h"
 #include "selftalk/rng.h"
+#include "selftalk/study.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -22,7 +23,7 @@ extern "C" {
 #define ST_NET_NHID 15     /* hidden neurons */
 #define ST_NET_NOUT 13     /* outputs of the base network */
 #define ST_NET_NDOF 12     /* actuated DOF: outputs 0..11 */
-#define ST_NET_NLING 4     /* linguistic units: reach, open, grasp, move */
+#define ST_NET_NLING ST_NPRIM /* linguistic units: one a primitive's word */
 #define ST_NET_NFOCUS 3    /* focus-vector inputs 18..20 */
 #define ST_NET_NDIRECT 9   /* outputs 0..8 (torso + arm) fed directly by the focus inputs */
 #define ST_NET_IN_TOUCH 12 /* first touch input */

@@ -196,6 +196,15 @@ stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWor
                           stIntPlan *plan, stIntTrialResult *r, stPredScore *pred,
                           stTraceFn trace, void *ctx, char *err, size_t errsz);
 
+/* An integrated episode e driven by any controller (what st_int_trial_run does with a
+ * network's): the words of plan->words, the integrated scorer, and, when plan->fitness is
+ * ST_FIT_PREDICTION and pred is given, the prediction score of the words and the controller's
+ * linguistic outputs (zero otherwise). Nullable: trace, pred. */
+stStatus st_int_run_with(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
+                         const stEpisodeSpec *e, const stController *ctl, const stIntPlan *plan,
+                         stIntTrialResult *r, stPredScore *pred, stTraceFn trace, void *ctx,
+                         char *err, size_t errsz);
+
 #ifdef __cplusplus
 }
 #endif

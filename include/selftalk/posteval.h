@@ -28,24 +28,47 @@
 #include <stdio.h>
 
 #include "selftalk/integrated.h"
+#include "selftalk/study.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-typedef enum stPostTest {
-  ST_POST_INTEGRATION = 0,
-  ST_POST_ROBUSTNESS,
-  ST_POST_GENERALISATION,
-  ST_POST_NTESTS
-} stPostTest;
-
-/* "integration", "robustness", "generalisation". */
-const char *st_post_test_name(stPostTest test);
-/* The test named, or -1. */
-int st_post_test_parse(const char *name);
+/* stPostTest, its names: selftalk/study.h */
 /* The test's reader bit of the key table (ST_CONFIG_INTEGRATION_TEST, ...). */
 unsigned st_post_test_reader(stPostTest test);
+
+/* A test's variant: its own words, or other words in the same trials. */
+typedef enum stPostVariant {
+  ST_POST_OWN_WORDS = 0, /* the test's words */
+  ST_POST_CARETAKER = 1, /* generalisation: the caretaker's words (ST-CT0, ST0) */
+  ST_POST_NO_WORDS = 2   /* integration: no words (SPEC 12: chains of primitives that stay
+                            word-driven should rarely succeed without them) */
+} stPostVariant;
+
+/* What sets a test apart, one row per test (lib/posteval/posteval.c), read wherever tests are
+ * treated differently. A new test is its name (selftalk/study.h), a row, and its reader bit
+ * and keys in the config's key table. */
+typedef struct stPostTestInfo {
+  unsigned reader;        /* the config keys' reader bit (ST_CONFIG_*_TEST) */
+  int grid;               /* trials: 1, the generalisation grid (cells x postures x
+                             repetitions, the one target ST_TARGET_GENERAL); 0, the integrated
+                             stage's four types with fresh offsets, posteval.<test>_trials */
+  int own_caretaker;      /* its own words are the caretaker's; 0: the condition's autonomous
+                             words (st_post_words) */
+  stPostVariant variant;  /* the variant it has besides its own words (ST_POST_OWN_WORDS:
+                             none) */
+  int populations;        /* inputs: primitive runs' populations (posteval.integration_top
+                             each), the condition named by their kind; 0: integrated runs, the
+                             condition named by its Table 2.1 row (st_post_condition) */
+  int excludes;           /* with its own words, a run whose autonomous training trials never
+                             succeeded is left out (st_post_excluded) */
+  int (*trials)(const stConfig *cfg); /* trials per individual */
+  int (*steps)(const stConfig *cfg);  /* trial length */
+} stPostTestInfo;
+
+/* The row of a test; NULL for no test. */
+const stPostTestInfo *st_post_test_info(stPostTest test);
 
 /* A test's trial table (keys posteval.*, integrated.steps, run.seed). */
 typedef struct stPostDef {
@@ -97,14 +120,6 @@ void st_post_cell_center(const stPostDef *def, int cell, double xy[2]);
 /* The episode of a trial: dynamic, from reach posture trial->posture, the object-table
  * collision on throughout. */
 void st_post_episode(const stProtocol *p, const stPostTrial *trial, stEpisodeSpec *e);
-
-/* A test's variant: its own words, or other words in the same trials. */
-typedef enum stPostVariant {
-  ST_POST_OWN_WORDS = 0, /* the test's words */
-  ST_POST_CARETAKER = 1, /* generalisation: the caretaker's words (ST-CT0, ST0) */
-  ST_POST_NO_WORDS = 2   /* integration: no words (SPEC 12: chains of primitives that stay
-                            word-driven should rarely succeed without them) */
-} stPostVariant;
 
 /* What the trials of a test hear: integration, and the generalisation test's caretaker variant,
  * the caretaker; robustness and generalisation the condition's autonomous words

@@ -30,7 +30,7 @@
 #ifndef SELFTALK_POSTURES_H
 #define SELFTALK_POSTURES_H
 
-#include "selftalk/fitness.h" /* the primitives: ST_PRIM_*, st_primitive_name */
+#include "selftalk/study.h" /* the primitives: ST_PRIM_*, st_primitive_name */
 #include "selftalk/rng.h"
 #include "selftalk/robot.h"
 #include "selftalk/scene.h"

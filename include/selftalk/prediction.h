@@ -19,12 +19,13 @@
 
 #include "selftalk/base.h"
 #include "selftalk/config.h"
+#include "selftalk/study.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define ST_PRED_NWORDS 4 /* reach, open, grasp, move */
+#define ST_PRED_NWORDS ST_NPRIM /* the words: one a primitive */
 
 /* The largest |output| a trial may have: the network's linguistic outputs are sigmoids in
  * [0, 1] (emitted with a gain of at most 1000), and below this every difference and sum of

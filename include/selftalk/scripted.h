@@ -5,15 +5,15 @@
  * object, open the hand palm down, grasp the 0.2 kg ball and hold it without the table, lift
  * it and carry it to a target.
  *
- * It implements the stController interface of selftalk/trial.h and, like the evolved network,
- * learns which primitive to perform from the linguistic inputs (21-24: reach, open, grasp,
- * move; none: it holds still). It reads the world (measured qhat, link poses, object centre,
+ * It implements the stController interface of selftalk/episode.h, beside the network's
+ * (st_net_controller), and, like the evolved network, learns which primitive to perform from
+ * the linguistic inputs (21-24: reach, open, grasp, move; none: it holds still). It reads the world (measured qhat, link poses, object centre,
  * target, touch sensors) and plans with the inverse kinematics of selftalk/ik.h: the palm
  * centre, or the point of the palm frame where the ball sits, plus the palm normal pointing
  * down. Under SPEC §3's law (velocity alpha (y - qhat) deg/s, clamped) a command
  * y = qhat + g (q_goal - qhat) / (1 - exp(-alpha dt / range)) closes a fraction g of the error
  * per step; thumb and fingers are commanded beyond their contact flexion, so that their
- * motors push with their bounded torque. In short (numbers and reasons: lib/task/scripted.c and
+ * motors push with their bounded torque. In short (numbers and reasons: lib/episode/scripted.c and
  * docs/PROTOCOL.md, "Scripted controller"):
  *   reach: palm centre to the reach point, palm down, hand open, thumb beside the palm;
  *   open:  the same target; the palm rises slowly while the hand is still closed;

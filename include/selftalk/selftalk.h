@@ -14,6 +14,7 @@
 #include "selftalk/prediction.h"
 #include "selftalk/rng.h"
 #include "selftalk/stats.h"
+#include "selftalk/study.h"
 /* the simulator side (links ODE, urdfdom, assimp): robot, world, sensors, stages */
 #include "selftalk/caretaker.h"
 #include "selftalk/episode.h"

@@ -16,7 +16,7 @@
 extern "C" {
 #endif
 
-#define ST_PRIM_TRIALS 16 /* trials of a primitive stage: 4 per primitive */
+#define ST_PRIM_TRIALS (ST_NPRIM * ST_NPOSTURE) /* trials of a primitive stage: 16 */
 /* main-prim's hand-over trials (stage.handover, not the thesis's protocol): open, grasp and
  * move from each reach posture k, indices ST_PRIM_TRIALS + 4 (primitive - 1) + k */
 #define ST_HANDOVER_TRIALS 12
@@ -51,6 +51,20 @@ typedef struct stTrialSpec {
  * 16..27 are the hand-over trials (offsets from (seed, ST_RNG_HANDOVER, generation, 0,
  * index - 16): object, then target), built whatever stage.handover says. */
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t);
+
+/* A stage's trials in one generation, built once and read by every individual's evaluation
+ * (st_stage_evaluate keeps the last one in its workspace): each is keyed by (seed, generation,
+ * trial) alone, and with postures.vary_starts a start costs inverse-kinematics draws. */
+typedef struct stTrialTable {
+  stConfig cfg;          /* the protocol's config it was built for (a copy: compared whole) */
+  stStage stage;
+  int generation;
+  int n;                 /* st_stage_trials */
+  stTrialSpec t[ST_MAIN_TRIALS_MAX]; /* st_trial_spec of each trial whose primitive
+                                        p->primitives evaluates; the others zero */
+} stTrialTable;
+
+void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table);
 
 /* The trial a hand-over trial falls back to when its roll-in did not hand over: the fixed
  * main-prim trial of its primitive and posture, with the hand-over trial's target and index. */

@@ -24,6 +24,12 @@ const char *st_status_str(stStatus status) {
   return names[status];
 }
 
+void st__assert_fail(const char *func, const char *file, int line, const char *cond) {
+  fprintf(stderr, "selftalk: assertion failed in %s (%s:%d): %s\n", func, file, line, cond);
+  fflush(stderr);
+  abort();
+}
+
 int st__errf(char *err, size_t errsz, const char *fmt, ...) {
   if (err && errsz) {
     va_list ap;

@@ -14,6 +14,7 @@
 #include "core/internal.h"
 #include "selftalk/genome.h"
 #include "selftalk/io.h"
+#include "selftalk/study.h"
 #include "core/readers.h"
 
 /* ---- the key table, generated from ST_CONFIG_KEYS ---- */
@@ -188,10 +189,14 @@ static const struct {
   const char *choice;
   unsigned stages;
 } g_run_stages[] = {{"simple_prim", S_}, {"main_prim", M_}, {"prims", S_ | M_}, {"integrated", I_}};
-static const char *const g_stage_names[] = {"simple-prim", "main-prim", "integrated",
-                                            "integration", "robustness", "generalisation"};
 #define NSTAGE_BITS 6
 #define NEVOLVE_BITS 3 /* bits 0-2 are evolution stages, 3-5 post-evaluation tests */
+/* the name of stage bit b: ST_CONFIG_SIMPLE_PRIM, _MAIN_PRIM, _INTEGRATED, then the tests */
+static const char *stage_bit_name(int b) {
+  return b < ST_STAGE_COUNT      ? st_stage_name((stStage)b)
+         : b < NEVOLVE_BITS      ? ST_INTEGRATED_STAGE_NAME
+                                 : st_post_test_name((stPostTest)(b - NEVOLVE_BITS));
+}
 #undef P_
 #undef S_
 #undef M_
@@ -229,7 +234,7 @@ static void join_names(unsigned stages, int lo, int hi, char *buf, size_t n) {
   for (int b = lo; b < hi; b++) left += (int)(stages >> b & 1u);
   for (int b = lo; b < hi; b++)
     if (stages >> b & 1u) {
-      strncat(buf, g_stage_names[b], n - strlen(buf) - 1);
+      strncat(buf, stage_bit_name(b), n - strlen(buf) - 1);
       if (--left) strncat(buf, left == 1 ? " and " : ", ", n - strlen(buf) - 1);
     }
 }
@@ -420,9 +425,6 @@ static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value
 }
 
 unsigned st_config_primitive_mask(const stConfig *cfg) {
-  /* ST_PRIM_* order; spelled here because the config reader is in the simulator-free core,
-   * without fitness.h's st_primitive_name */
-  static const char *const names[] = {"reach", "open", "grasp", "move"};
   unsigned mask = 0;
   const char *s = cfg->stage_primitives;
   for (;;) {
@@ -430,9 +432,7 @@ unsigned st_config_primitive_mask(const stConfig *cfg) {
     size_t len = strcspn(s, ",");
     size_t end = len;
     while (end > 0 && (s[end - 1] == ' ' || s[end - 1] == '\t')) end--;
-    int found = -1;
-    for (int p = 0; p < (int)(sizeof names / sizeof names[0]); p++)
-      if (end == strlen(names[p]) && !strncmp(s, names[p], end)) found = p;
+    const int found = st_primitive_parse(s, end);
     if (found < 0) return 0; /* an unknown or empty name */
     mask |= 1u << found;
     if (!s[len]) break;

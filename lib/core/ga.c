@@ -60,6 +60,8 @@ static stStatus check_def(const stGaDef *d, char *err, size_t errsz) {
 
 stStatus st_ga_create(const stGaDef *def, const stGenome *init, int ninit, const uint8_t *mask,
                       stGa **out, char *err, size_t errsz) {
+  ST_ASSERT(def && out);
+  ST_ASSERT(ninit >= 0 && (ninit == 0 || init));
   *out = NULL;
   const stGaDef *d = def;
   stStatus st = check_def(d, err, errsz);
@@ -113,9 +115,21 @@ void st_ga_destroy(stGa *ga) {
 
 const stGaDef *st_ga_def(const stGa *ga) { return &ga->def; }
 int st_ga_generation(const stGa *ga) { return ga->generation; }
-const stGenome *st_ga_genome(const stGa *ga, int i) { return &ga->pop[i]; }
-int st_ga_ranked(const stGa *ga, int r) { return ga->rank[r]; }
-double st_ga_fitness(const stGa *ga, int i) { return ga->fitness[i]; }
+const stGenome *st_ga_genome(const stGa *ga, int i) {
+  ST_ASSERT(ga);
+  ST_ASSERT(i >= 0 && i < ga->def.population);
+  return &ga->pop[i];
+}
+int st_ga_ranked(const stGa *ga, int r) {
+  ST_ASSERT(ga);
+  ST_ASSERT(r >= 0 && r < ga->def.population);
+  return ga->rank[r];
+}
+double st_ga_fitness(const stGa *ga, int i) {
+  ST_ASSERT(ga);
+  ST_ASSERT(i >= 0 && i < ga->def.population);
+  return ga->fitness[i];
+}
 
 /* a before b: higher fitness, NaN last, then lower index (a total order: qsort is safe) */
 static int rank_cmp_ctx(const double *f, int a, int b) {
@@ -127,6 +141,7 @@ static int rank_cmp_ctx(const double *f, int a, int b) {
 }
 
 void st_ga_tell(stGa *ga, const double *fitness) {
+  ST_ASSERT(ga && fitness);
   int n = ga->def.population;
   memcpy(ga->fitness, fitness, sizeof *fitness * (size_t)n);
   /* insertion sort with an explicit total order: stable, reentrant, n is small */
@@ -142,6 +157,8 @@ void st_ga_tell(stGa *ga, const double *fitness) {
 }
 
 int st_ga_mutate(stGenome *g, const uint8_t *mask, double rate, stRng *rng) {
+  ST_ASSERT(g && rng);
+  ST_ASSERT(rate >= 0.0 && rate <= 1.0);
   int flips = 0;
   for (int i = 0; i < g->ngenes; i++) {
     if (mask && !mask[i]) continue;
@@ -156,6 +173,7 @@ int st_ga_mutate(stGenome *g, const uint8_t *mask, double rate, stRng *rng) {
 }
 
 stStatus st_ga_next(stGa *ga) {
+  ST_ASSERT(ga);
   if (!ga->told) return ST_ERR_ARG;
   const stGaDef *d = &ga->def;
   int next_gen = ga->generation + 1;

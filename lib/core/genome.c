@@ -35,13 +35,19 @@ int st_arch_ngenes(stNetArch arch) {
 
 double st_gene_value(uint16_t u) { return -1.0 + 2.0 * (double)u / 65535.0; }
 
-int st_genome_bit(const stGenome *g, int b) { return (g->gene[b >> 4] >> (15 - (b & 15))) & 1; }
+int st_genome_bit(const stGenome *g, int b) {
+  ST_ASSERT(g && b >= 0 && b < 16 * g->ngenes);
+  return (g->gene[b >> 4] >> (15 - (b & 15))) & 1;
+}
 
 void st_genome_flip_bit(stGenome *g, int b) {
+  ST_ASSERT(g && b >= 0 && b < 16 * g->ngenes);
   g->gene[b >> 4] ^= (uint16_t)(1u << (15 - (b & 15)));
 }
 
 void st_genome_random(stGenome *g, int ngenes, stRng *rng) {
+  ST_ASSERT(g && rng);
+  ST_ASSERT(ngenes >= 0 && ngenes <= ST_GENOME_MAX_GENES);
   memset(g, 0, sizeof *g);
   g->ngenes = ngenes;
   /* four genes per draw: every bit is an independent fair coin */

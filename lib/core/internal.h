@@ -11,6 +11,27 @@
 #define ST_PRINTF(a, b)
 #endif
 
+#if defined(__GNUC__)
+#define ST_NORETURN __attribute__((noreturn))
+#else
+#define ST_NORETURN
+#endif
+
+/* ST_ASSERT(cond): a broken precondition of a public function (a programmer error, which
+ * stStatus does not report: see selftalk/base.h) aborts with the function, file:line and the
+ * condition, as Box2D's B2_ASSERT does. On where ST_ASSERTS is defined (`make asan`, `make
+ * debug`, or ASSERTS=1); in release builds the condition is only type-checked, never
+ * evaluated, so it must have no side effect and costs nothing. */
+#if defined(ST_ASSERTS)
+#define ST_ASSERT(cond) \
+  ((cond) ? (void)0 : st__assert_fail(__func__, __FILE__, __LINE__, #cond))
+#else
+#define ST_ASSERT(cond) ((void)sizeof(!(cond)))
+#endif
+
+/* Prints "selftalk: assertion failed in FUNC (FILE:LINE): COND" to stderr and aborts. */
+void st__assert_fail(const char *func, const char *file, int line, const char *cond) ST_NORETURN;
+
 #define ST_PI 3.14159265358979323846
 #define ST_DEG (ST_PI / 180.0)
 

@@ -26,6 +26,7 @@ double st_net_sigmoid(double lambda, double x) { return 1.0 / (1.0 + exp(-lambda
 
 stStatus st_net_decode(const stNetDef *def, stNetArch arch, const stGenome *g, stNetParams *p,
                        char *err, size_t errsz) {
+  ST_ASSERT(g && p);
   stNetDef d = def ? *def : st_net_default_def();
   int want = st_arch_ngenes(arch);
   if (!want) {
@@ -64,11 +65,13 @@ stStatus st_net_decode(const stNetDef *def, stNetArch arch, const stGenome *g, s
 }
 
 void st_net_reset(const stNetParams *p, stNetState *s) {
+  ST_ASSERT(p && s);
   (void)p;
   memset(s, 0, sizeof *s);
 }
 
 void st_net_step(const stNetParams *p, stNetState *s, const double *in, double *out) {
+  ST_ASSERT(p && s && in);
   const double lam = p->lambda;
   /* hidden layer: inputs at t and, in type B, the hidden-linguistic values emitted at t-1 */
   for (int h = 0; h < ST_NET_NHID; h++) {
@@ -115,5 +118,7 @@ int st_net_selftalk_label(const stNetState *s) {
 }
 
 void st_net_label_input(int label, double scale, double in4[ST_NET_NLING]) {
+  ST_ASSERT(label >= -1 && label < ST_NET_NLING);
+  ST_ASSERT(in4);
   for (int m = 0; m < ST_NET_NLING; m++) in4[m] = m == label ? scale : 0.0;
 }

@@ -38,6 +38,8 @@ static int argmax(const double o[ST_PRED_NWORDS]) {
 }
 
 double st_pred_d1(const double o[ST_PRED_NWORDS], int p) {
+  ST_ASSERT(o);
+  ST_ASSERT(p >= 0 && p < ST_PRED_NWORDS);
   double h1, h2;
   top_two(o, &h1, &h2);
   return 1.0 - (h1 - o[p]);
@@ -102,6 +104,7 @@ static stStatus check_trial(const stPredTrial *t, char *err, size_t errsz) {
 
 stStatus st_pred_trial(const stPredDef *d, const stPredTrial *t, stPredScore *s, char *err,
                        size_t errsz) {
+  ST_ASSERT(d && t && s);
   memset(s, 0, sizeof *s);
   for (int p = 0; p < ST_PRED_NWORDS; p++) s->t_s[p] = s->t_pr[p] = -1;
   stStatus st = check_trial(t, err, errsz);
@@ -129,6 +132,7 @@ stStatus st_pred_trial(const stPredDef *d, const stPredTrial *t, stPredScore *s,
 }
 
 double st_pred_fitness(const stPredScore *s, const int *counts, int n, double *b_sum) {
+  ST_ASSERT(n >= 0 && (n == 0 || (s && counts)));
   double b = 0.0, parts = 0.0;
   for (int i = 0; i < n; i++) {
     if (!counts[i]) continue;

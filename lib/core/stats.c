@@ -146,6 +146,8 @@ stStatus st_mwu(const stMwuDef *def, const double *a, int n_a, const double *b, 
 /* ---- quantiles ---- */
 
 double st_quantile_sorted(const double *sorted, int n, double p) {
+  ST_ASSERT(sorted && n > 0);
+  ST_ASSERT(p >= 0.0 && p <= 1.0);
   const double h = (n - 1) * p;
   const int j = (int)floor(h);
   if (j >= n - 1) return sorted[n - 1];

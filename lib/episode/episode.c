@@ -22,6 +22,7 @@ static stStatus check_dynamics(const stProtocol *p, char *err, size_t errsz) {
 }
 
 stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, size_t errsz) {
+  ST_ASSERT(cfg && out);
   *out = NULL;
   stStatus st = st_config_validate(cfg, err, errsz);
   if (st) return st;
@@ -56,7 +57,9 @@ void st_workspace_free(stWorkspace *ws) {
   if (!ws) return;
   st_world_destroy(ws->kin);
   st_world_destroy(ws->dyn);
+  free(ws->trials);
   ws->kin = ws->dyn = NULL;
+  ws->trials = NULL;
 }
 
 const char *st_word_source_name(stWordSource s) {
@@ -70,6 +73,7 @@ int st_word_source_given(stWordSource s) {
 }
 
 int st_episode_label(const double *ling4) {
+  ST_ASSERT(ling4);
   int best = 0;
   for (int m = 1; m < ST_NET_NLING; m++)
     if (ling4[m] > ling4[best]) best = m;
@@ -96,6 +100,8 @@ static void net_act(void *self, const stWorld *w, const stQuantities *q, const d
 
 stController st_net_controller(stNetController *c, const stNetParams *net, const stForce *force,
                                int nforce) {
+  ST_ASSERT(c && net);
+  ST_ASSERT(nforce >= 0);
   memset(c, 0, sizeof *c);
   c->net = net;
   c->force = force;
@@ -200,6 +206,8 @@ static void observe(const stProtocol *p, const stWorld *w, stTraceStep *s) {
 stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
                         const stController *ctl, const stWords *words, const stScorer *scorer,
                         stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && ws && e && ctl && ctl->act && words && scorer && scorer->step);
+  ST_ASSERT(e->steps >= 0);
   stWorld *w = NULL;
   stStatus st = check_episode(ctl, words, err, errsz);
   if (!st) st = episode_world(p, ws, e->dynamic, &w, err, errsz);

@@ -9,6 +9,9 @@
 
 void st_int_episode(const stProtocol *p, const stIntegratedDef *def, int k, int t, stRng *rng,
                     uint64_t seed_key, stEpisodeSpec *e) {
+  ST_ASSERT(p && def && e);
+  ST_ASSERT(k >= 0 && k < ST_NPOSTURE);
+  ST_ASSERT(t >= 0 && t <= ST_TARGET_GENERAL);
   memset(e, 0, sizeof *e);
   e->dynamic = 1;
   memcpy(e->qhat0, p->posture[ST_PRIM_REACH][k], sizeof e->qhat0);
@@ -22,6 +25,8 @@ void st_int_episode(const stProtocol *p, const stIntegratedDef *def, int k, int 
 
 void st_int_trial(const stProtocol *p, const stIntegratedDef *def, int generation, int individual,
                   int i, stEpisodeSpec *e) {
+  ST_ASSERT(p && def && e);
+  ST_ASSERT(generation >= 0 && individual >= 0 && i >= 0);
   const uint64_t seed = (uint64_t)p->cfg.run_seed;
   stRng rng = st_rng_keyed(seed, ST_RNG_INTEGRATED, (uint64_t)generation, 0, (uint64_t)i);
   const uint64_t key =
@@ -31,6 +36,7 @@ void st_int_trial(const stProtocol *p, const stIntegratedDef *def, int generatio
 }
 
 stWords st_int_words(const stProtocol *p, stWordSource source) {
+  ST_ASSERT(p);
   stWords w = {source, -1, p->cfg.network_linguistic_input, p->cfg.network_secondary_input};
   return w;
 }
@@ -71,6 +77,7 @@ static void int_end(void *self, const stWorld *w) {
 
 stScorer st_int_scorer(stIntScorer *s, const stProtocol *p, const stIntegratedDef *def,
                        stIntTrialResult *r, stIntRecord *rec) {
+  ST_ASSERT(s && p && def && r);
   s->p = p;
   s->def = def;
   s->r = r;
@@ -107,18 +114,28 @@ stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWor
                           int generation, int individual, int i, const stNetParams *net,
                           stIntPlan *plan, stIntTrialResult *r, stPredScore *pred,
                           stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && def && ws && net && plan && r);
+  ST_ASSERT(generation >= 0 && individual >= 0 && i >= 0);
   *plan = st_integrated_plan(def, generation, i);
   stEpisodeSpec e;
   st_int_trial(p, def, generation, individual, i, &e);
-  const stWords words = st_int_words(p, plan->words);
   stNetController nc;
   const stController ctl = st_net_controller(&nc, net, NULL, 0);
+  return st_int_run_with(p, def, ws, &e, &ctl, plan, r, pred, trace, ctx, err, errsz);
+}
+
+stStatus st_int_run_with(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
+                         const stEpisodeSpec *e, const stController *ctl, const stIntPlan *plan,
+                         stIntTrialResult *r, stPredScore *pred, stTraceFn trace, void *ctx,
+                         char *err, size_t errsz) {
+  ST_ASSERT(p && def && ws && e && ctl && plan && r);
+  const stWords words = st_int_words(p, plan->words);
   const int predicts = plan->fitness == ST_FIT_PREDICTION;
   stIntRecord rec = {0, 0, NULL, NULL};
-  stStatus st = predicts ? record_alloc(&rec, e.steps, err, errsz) : ST_OK;
+  stStatus st = predicts ? record_alloc(&rec, e->steps, err, errsz) : ST_OK;
   stIntScorer is;
   const stScorer sc = st_int_scorer(&is, p, def, r, predicts ? &rec : NULL);
-  if (!st) st = st_episode_run(p, ws, &e, &ctl, &words, &sc, trace, ctx, err, errsz);
+  if (!st) st = st_episode_run(p, ws, e, ctl, &words, &sc, trace, ctx, err, errsz);
   if (pred) memset(pred, 0, sizeof *pred);
   if (!st && pred && predicts) st = score_prediction(def, &rec, pred, err, errsz);
   free(rec.word);
@@ -129,6 +146,7 @@ stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWor
 stStatus st_int_evaluate(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
                          int generation, int individual, const stNetParams *net,
                          stIntEvaluation *e, char *err, size_t errsz) {
+  ST_ASSERT(p && def && ws && net && e);
   stIntPlan plan[ST_INT_MAX_TRIALS];
   stIntTrialResult r[ST_INT_MAX_TRIALS];
   stPredScore pred[ST_INT_MAX_TRIALS];

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "selftalk/integrated.h"
+#include "core/internal.h"
 
 const char *st_int_fitness_name(stIntFitness f) {
   return f == ST_FIT_INTEGRATED ? "integrated" : f == ST_FIT_PREDICTION ? "prediction" : "?";
@@ -44,6 +45,8 @@ void st_chain_def_from_config(const stConfig *c, stIntegratedDef *d) {
 }
 
 stIntPlan st_integrated_plan(const stIntegratedDef *d, int generation, int trial) {
+  ST_ASSERT(d);
+  ST_ASSERT(generation >= 0 && trial >= 0);
   /* the first generation's variant (thesis 2.9.4.1): the caretaker in every trial, every trial
    * scored by the integrated fitness with its bonuses multiplied */
   const int first = d->first_variant && generation == 0;
@@ -82,6 +85,7 @@ double st_int_penalty(const stQuantities *q, double pen_table, double pen_moving
 
 void st_int_score_begin(stIntScore *sc, const stFitnessDef *fd, double focus_threshold,
                         const stIntegratedDef *def) {
+  ST_ASSERT(sc && fd);
   memset(sc, 0, sizeof *sc);
   sc->fd = fd;
   sc->focus_threshold = focus_threshold;
@@ -128,6 +132,7 @@ int st_int_score_step(stIntScore *sc, int step, const stQuantities *q, double y_
 }
 
 void st_int_score_end(stIntScore *sc, stIntTrialResult *out) {
+  ST_ASSERT(sc && out);
   stIntTrialResult *r = &sc->r;
   const long remaining = sc->steps - r->steps_run;
   if (r->end == ST_END_SUCCESS) r->sum_s += (double)remaining;
@@ -180,6 +185,8 @@ static void combine_prediction(const stIntPlan *plan, const stIntTrialResult *r,
 void st_int_combine(double bonus, double scale, const stIntPlan *plan,
                     const stIntTrialResult *r, const stPredScore *pred, int n,
                     stIntEvaluation *e) {
+  ST_ASSERT(n >= 0 && n <= ST_INT_MAX_TRIALS);
+  ST_ASSERT(e && (n == 0 || (plan && r)));
   memset(e, 0, sizeof *e);
   e->ntrials = n;
   combine_integrated(bonus, scale, plan, r, n, e);

@@ -62,6 +62,10 @@ static void handover_spec(const stProtocol *p, int j, stTrialSpec *t) {
 }
 
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
+  ST_ASSERT(p && t);
+  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
+  ST_ASSERT(generation >= 0);
+  ST_ASSERT(index >= 0 && index < (stage == ST_STAGE_MAIN ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS));
   const stConfig *c = &p->cfg;
   memset(t, 0, sizeof *t);
   t->stage = stage;
@@ -91,6 +95,8 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
 }
 
 void st_handover_fallback(const stProtocol *p, const stTrialSpec *h, stTrialSpec *t) {
+  ST_ASSERT(p && h && t);
+  ST_ASSERT(h->handover);
   st_trial_spec(p, ST_STAGE_MAIN, h->generation, h->primitive * ST_NPOSTURE + h->k, t);
   memcpy(t->target, h->target, sizeof t->target);
   t->index = h->index;
@@ -98,6 +104,8 @@ void st_handover_fallback(const stProtocol *p, const stTrialSpec *h, stTrialSpec
 
 void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_key,
                       stEpisodeSpec *e, stWords *words) {
+  ST_ASSERT(p && t && e && words);
+  ST_ASSERT(t->primitive >= 0 && t->primitive < ST_NPRIM);
   memset(e, 0, sizeof *e);
   e->dynamic = t->stage != ST_STAGE_SIMPLE;
   memcpy(e->qhat0, t->qhat0, sizeof e->qhat0);
@@ -126,6 +134,7 @@ static double masked_penalty(const stTraceStep *s, int mask) {
 }
 
 void st_score_begin(stTrialScore *sc, const stTrialSpec *t) {
+  ST_ASSERT(sc && t);
   memset(sc, 0, sizeof *sc);
   sc->r.handover_step = -1;
   sc->stage = t->stage;
@@ -139,6 +148,8 @@ void st_score_begin(stTrialScore *sc, const stTrialSpec *t) {
 int st_score_step(stTrialScore *sc, const stFitnessDef *fd, int step, const stQuantities *q,
                   double y_focus, double threshold, double penalty, int fell, int unstable,
                   double *S_out, double *P_out) {
+  ST_ASSERT(sc && fd && q);
+  ST_ASSERT(step >= 0);
   stTrialResult *r = &sc->r;
   const double S = st_step_fitness(fd, sc->stage, sc->primitive, q, y_focus, threshold);
   r->sum_s += S;
@@ -171,6 +182,7 @@ int st_score_step(stTrialScore *sc, const stFitnessDef *fd, int step, const stQu
 
 void st_score_end(stTrialScore *sc, const stFitnessDef *fd, double obj_z, double table_top_z,
                   stTrialResult *out) {
+  ST_ASSERT(sc && fd && out);
   stTrialResult *r = &sc->r;
   const long remaining = sc->steps - r->steps_run;
   if (r->end == ST_END_SUCCESS) r->sum_s += (double)remaining;
@@ -237,6 +249,7 @@ static void prim_end(void *self, const stWorld *w) {
 
 stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
                         stTrialResult *r) {
+  ST_ASSERT(s && p && t && r);
   s->p = p;
   s->t = t;
   s->r = r;
@@ -258,6 +271,7 @@ static stStatus run_episode(const stProtocol *p, stWorkspace *ws, const stTrialS
 stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                            const stController *ctl, uint64_t seed_key, stTrialResult *r,
                            stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && ws && t && ctl && ctl->act && r);
   stStatus st = run_episode(p, ws, t, ctl, seed_key, r, trace, ctx, err, errsz);
   if (st || !t->handover || r->handover_step >= 0) return st;
   if (!p->cfg.stage_handover_fallback) { /* the chain broke before the primitive: nothing earned */
@@ -276,6 +290,7 @@ stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrial
                              const stNetParams *net, const stForce *force, int nforce,
                              uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
                              char *err, size_t errsz) {
+  ST_ASSERT(net);
   stStatus st = st_force_check(force, nforce, err, errsz);
   if (st) return st;
   stNetController c;
@@ -296,6 +311,9 @@ typedef struct stageSums {
 } stageSums;
 
 uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index) {
+  ST_ASSERT(p);
+  ST_ASSERT(generation >= 0 && individual >= 0);
+  ST_ASSERT(index >= 0 && index < ST_MAIN_TRIALS_MAX);
   const uint64_t seed = (uint64_t)p->cfg.run_seed;
   if (index >= ST_PRIM_TRIALS)
     return st_rng_keyed(seed, ST_RNG_HANDOVER_SOLVER, (uint64_t)generation, (uint64_t)individual,
@@ -305,21 +323,51 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
 }
 
 int st_stage_trials(const stProtocol *p, stStage stage) {
+  ST_ASSERT(p);
+  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
   return stage == ST_STAGE_MAIN && p->cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
 }
 
-/* runs trial `index` of the generation and adds it to its primitive's sums */
-static stStatus add_trial(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
-                          int individual, int index, const stNetParams *net, stageSums *sums,
+/* the primitive of trial i: fixed trials i / 4, hand-over trials 1 + (i - 16) / 4 */
+static int trial_primitive(int i) {
+  return i < ST_PRIM_TRIALS ? i / ST_NPOSTURE : ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE;
+}
+
+void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table) {
+  ST_ASSERT(p && table);
+  memset(table, 0, sizeof *table);
+  memcpy(&table->cfg, &p->cfg, sizeof table->cfg);
+  table->stage = stage;
+  table->generation = generation;
+  table->n = st_stage_trials(p, stage);
+  for (int i = 0; i < table->n; i++)
+    if (p->primitives >> trial_primitive(i) & 1u) st_trial_spec(p, stage, generation, i, &table->t[i]);
+}
+
+/* the workspace's table for the generation, built when it holds another (or none) */
+static const stTrialTable *generation_table(const stProtocol *p, stWorkspace *ws, stStage stage,
+                                            int generation, char *err, size_t errsz) {
+  if (!ws->trials && !(ws->trials = calloc(1, sizeof *ws->trials))) { /* n 0: empty */
+    st__errf(err, errsz, "trial table: out of memory");
+    return NULL;
+  }
+  stTrialTable *tab = ws->trials;
+  if (tab->n == 0 || tab->generation != generation || tab->stage != stage ||
+      memcmp(&tab->cfg, &p->cfg, sizeof tab->cfg) != 0)
+    st_trial_table(p, stage, generation, tab);
+  return tab;
+}
+
+/* runs trial t of the generation and adds it to its primitive's sums */
+static stStatus add_trial(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                          int individual, const stNetParams *net, stageSums *sums,
                           stTrialResult *r, char *err, size_t errsz) {
-  stTrialSpec t;
-  st_trial_spec(p, stage, generation, index, &t);
-  const uint64_t key = st_trial_seed_key(p, generation, individual, index);
-  stStatus st = st_trial_run(p, ws, &t, net, key, r, NULL, NULL, err, errsz);
+  const uint64_t key = st_trial_seed_key(p, t->generation, individual, t->index);
+  stStatus st = st_trial_run(p, ws, t, net, key, r, NULL, NULL, err, errsz);
   if (st) return st;
-  sums->sum_sp[t.primitive] += r->sum_s - r->sum_p;
-  sums->n[t.primitive] += r->steps;
-  sums->bonus[t.primitive] += r->success ? p->fitness.bonus : 0.0;
+  sums->sum_sp[t->primitive] += r->sum_s - r->sum_p;
+  sums->n[t->primitive] += r->steps;
+  sums->bonus[t->primitive] += r->success ? p->fitness.bonus : 0.0;
   return ST_OK;
 }
 
@@ -362,16 +410,18 @@ static double chain_weight(const stProtocol *p, const stEvaluation *e, int fixed
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, stEvaluation *e, char *err,
                            size_t errsz) {
+  ST_ASSERT(p && ws && net && e);
+  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
+  ST_ASSERT(generation >= 0 && individual >= 0);
   memset(e, 0, sizeof *e);
   stageSums sums;
   memset(&sums, 0, sizeof sums);
-  const int ntrials = st_stage_trials(p, stage);
-  for (int i = 0; i < ntrials; i++) {
-    /* fixed trials i / 4 and hand-over trials 1 + (i - 16) / 4: the primitive of trial i */
-    const int prim = i < ST_PRIM_TRIALS ? i / ST_NPOSTURE : ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE;
-    if (!(p->primitives >> prim & 1u)) continue;
+  const stTrialTable *tab = generation_table(p, ws, stage, generation, err, errsz);
+  if (!tab) return ST_ERR_NOMEM;
+  for (int i = 0; i < tab->n; i++) {
+    if (!(p->primitives >> trial_primitive(i) & 1u)) continue;
     stTrialResult r;
-    stStatus st = add_trial(p, ws, stage, generation, individual, i, net, &sums, &r, err, errsz);
+    stStatus st = add_trial(p, ws, &tab->t[i], individual, net, &sums, &r, err, errsz);
     if (st) return st;
     e->ntrials++;
     e->successes += r.success;

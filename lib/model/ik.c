@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/internal.h"
+
 #define NROW (3 + 3 * ST_IK_NAXIS)
 
 stIkDef st_ik_default_def(void) {
@@ -36,6 +38,8 @@ static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v
 
 void st_ik_target_align(stIkTarget *t, int k, const double axis[3], const double dir[3],
                         double weight) {
+  ST_ASSERT(t && axis && dir);
+  ST_ASSERT(k >= 0 && k < ST_IK_NAXIS);
   double na = norm3(axis), nd = norm3(dir);
   for (int i = 0; i < 3; i++) {
     t->axis[k][i] = na > 0 ? axis[i] / na : 0.0;
@@ -183,6 +187,7 @@ static void fill_result(stIkResult *res, const taskState *s, int iterations, int
 
 stStatus st_ik_evaluate(const stRobot *r, const stIkTarget *t, const double qhat[ST_NDOF],
                         stIkResult *result) {
+  ST_ASSERT(r && t && qhat && result);
   if (!target_ok(r, t)) return ST_ERR_ARG;
   double *buf = malloc(sizeof(double) * 12 * (size_t)r->nbody);
   if (!buf) return ST_ERR_NOMEM;
@@ -198,6 +203,7 @@ stStatus st_ik_evaluate(const stRobot *r, const stIkTarget *t, const double qhat
 
 stStatus st_ik_solve(const stRobot *r, const stIkDef *def, const stIkTarget *t,
                      double qhat[ST_NDOF], stIkResult *result) {
+  ST_ASSERT(r && def && t && qhat); /* result is nullable */
   if (!target_ok(r, t) || def->max_iter < 0 || !(def->damping > 0.0) ||
       !(def->damping_min > 0.0) || !(def->damping_max >= def->damping) || !(def->max_step > 0.0))
     return ST_ERR_ARG;

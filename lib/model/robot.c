@@ -37,6 +37,22 @@ static int need_link(const stModel *m, const char *name, const char *key, const 
   return b;
 }
 
+/* the body indices of the `want` link names listed in a config key (robot.KEY); -1 with an
+ * error naming the key when the count is not `want` or a link is not in the model */
+static int need_links(const stModel *m, const char *list, const char *key, int want, int *body,
+                      const char *source, char *err, size_t errsz) {
+  char links[ST_NTOUCH + 1][ST_NAME_MAX]; /* the longest list, and one more to see an extra */
+  ST_ASSERT(want > 0 && want <= ST_NTOUCH);
+  const int n = st__split_names(list, links, want + 1);
+  if (n != want) {
+    st__errf(err, errsz, "robot.%s: %d names (expected %d)", key, n, want);
+    return -1;
+  }
+  for (int i = 0; i < want; i++)
+    if ((body[i] = need_link(m, links[i], key, source, err, errsz)) < 0) return -1;
+  return 0;
+}
+
 static int master_of(const stModel *m, int b) {
   for (int guard = 0; guard < m->nbody && m->jnt_mimic[b] >= 0; guard++) b = m->jnt_mimic[b];
   return b;
@@ -134,21 +150,10 @@ stStatus st_robot_bind(stModel *m, const stConfig *cfg, const char *source, stRo
     if (!(a[0] == 0.0 && a[1] == 0.0 && a[2] == 1.0)) r->revolute_z = 0;
   }
 
-  char links[ST_NTOUCH + 1][ST_NAME_MAX];
-  n = st__split_names(cfg->robot_touch_links, links, ST_NTOUCH + 1);
-  if (n != ST_NTOUCH) {
-    st__errf(err, errsz, "robot.touch_links: %d names (expected %d)", n, ST_NTOUCH);
+  if (need_links(m, cfg->robot_touch_links, "touch_links", ST_NTOUCH, r->touch_body, source, err,
+                 errsz) ||
+      need_links(m, cfg->robot_tip_frames, "tip_frames", ST_NTIP, r->tip_body, source, err, errsz))
     goto fail;
-  }
-  for (int i = 0; i < ST_NTOUCH; i++)
-    if ((r->touch_body[i] = need_link(m, links[i], "touch_links", source, err, errsz)) < 0) goto fail;
-  n = st__split_names(cfg->robot_tip_frames, links, ST_NTIP + 1);
-  if (n != ST_NTIP) {
-    st__errf(err, errsz, "robot.tip_frames: %d names (expected %d)", n, ST_NTIP);
-    goto fail;
-  }
-  for (int i = 0; i < ST_NTIP; i++)
-    if ((r->tip_body[i] = need_link(m, links[i], "tip_frames", source, err, errsz)) < 0) goto fail;
   if ((r->palm_body = need_link(m, cfg->robot_palm_frame, "palm_frame", source, err, errsz)) < 0)
     goto fail;
   int arm0 = need_link(m, cfg->robot_arm_first_link, "arm_first_link", source, err, errsz);
@@ -191,14 +196,17 @@ void st_robot_destroy(stRobot *r) {
 }
 
 double st_robot_dof_angle(const stRobot *r, int dof, double qhat) {
+  ST_ASSERT(r && dof >= 0 && dof < ST_NDOF);
   return r->dof_lo[dof] + qhat * (r->dof_hi[dof] - r->dof_lo[dof]);
 }
 
 double st_robot_dof_qhat(const stRobot *r, int dof, double angle) {
+  ST_ASSERT(r && dof >= 0 && dof < ST_NDOF);
   return (angle - r->dof_lo[dof]) / (r->dof_hi[dof] - r->dof_lo[dof]);
 }
 
 void st_robot_angles(const stRobot *r, const double *qhat, double *angle) {
+  ST_ASSERT(r && qhat && angle);
   for (int b = 0; b < r->nbody; b++) {
     int d = r->body_dof[b];
     angle[b] = d < 0 ? 0.0
@@ -280,6 +288,7 @@ void st_robot_point_local(const double R[9], const double p[3], const double wor
 }
 
 void st_robot_fk(const stRobot *r, const double *qhat, double (*R)[9], double (*p)[3]) {
+  ST_ASSERT(r && qhat && R && p);
   double angle[256];
   double *a = r->nbody <= 256 ? angle : malloc(sizeof(double) * (size_t)r->nbody);
   st_robot_angles(r, qhat, a);

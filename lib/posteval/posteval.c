@@ -8,27 +8,54 @@
 #include "posteval/journal.h"
 #include "selftalk/posteval.h"
 
-static const char *const g_tests[ST_POST_NTESTS] = {"integration", "robustness", "generalisation"};
+/* ---- the tests, one row each ---- */
 
-const char *st_post_test_name(stPostTest t) {
-  return (int)t >= 0 && t < ST_POST_NTESTS ? g_tests[t] : "?";
+static int integration_trials(const stConfig *c) { return c->posteval_integration_trials; }
+static int robustness_trials(const stConfig *c) { return c->posteval_robustness_trials; }
+static int grid_trials(const stConfig *c) {
+  const int cells = c->posteval_generalisation_cells;
+  return cells * cells * ST_NPOSTURE * c->posteval_generalisation_repetitions;
 }
+static int integrated_steps(const stConfig *c) { return c->integrated_steps; }
+static int generalisation_steps(const stConfig *c) { return c->posteval_generalisation_steps; }
 
-int st_post_test_parse(const char *name) {
-  for (int t = 0; t < ST_POST_NTESTS; t++)
-    if (!strcmp(name, g_tests[t])) return t;
-  return -1;
+/* thesis 2.10.1-2.10.3 and SPEC 11-12, in stPostTest order */
+static const stPostTestInfo g_tests[ST_POST_NTESTS] = {
+    /* integration: the primitive runs' best under the caretaker; no words as its variant */
+    {ST_CONFIG_INTEGRATION_TEST, 0, 1, ST_POST_NO_WORDS, 1, 0, integration_trials,
+     integrated_steps},
+    /* robustness: the integrated runs, their own autonomous words, fresh offsets; no variant */
+    {ST_CONFIG_ROBUSTNESS_TEST, 0, 0, ST_POST_OWN_WORDS, 0, 0, robustness_trials,
+     integrated_steps},
+    /* generalisation: the grid, the runs that succeeded autonomously; the caretaker variant */
+    {ST_CONFIG_GENERALISATION_TEST, 1, 0, ST_POST_CARETAKER, 0, 1, grid_trials,
+     generalisation_steps},
+};
+
+/* the variants: their label suffix (st_post_condition), and why each belongs to its test */
+static const struct {
+  const char *name, *suffix, *why;
+} g_variants[] = {
+    {"own words", "", ""},
+    {"caretaker", "0", "ST-CT0, ST0; the integration test always hears the caretaker"},
+    {"no-words", "-nowords",
+     "robustness and generalisation already hear the condition's autonomous words"},
+};
+#define NVARIANTS (int)(sizeof g_variants / sizeof g_variants[0])
+
+const stPostTestInfo *st_post_test_info(stPostTest t) {
+  return (int)t >= 0 && t < ST_POST_NTESTS ? &g_tests[t] : NULL;
 }
 
 unsigned st_post_test_reader(stPostTest t) {
-  static const unsigned bit[ST_POST_NTESTS] = {
-      ST_CONFIG_INTEGRATION_TEST, ST_CONFIG_ROBUSTNESS_TEST, ST_CONFIG_GENERALISATION_TEST};
-  return (int)t >= 0 && t < ST_POST_NTESTS ? bit[t] : 0u;
+  const stPostTestInfo *info = st_post_test_info(t);
+  return info ? info->reader : 0u;
 }
 
 /* ---- the trial tables ---- */
 
 void st_post_def_from_config(const stConfig *c, stPostTest test, stPostDef *d) {
+  ST_ASSERT(c && d);
   memset(d, 0, sizeof *d);
   d->test = test;
   d->seed = (uint64_t)c->run_seed;
@@ -38,32 +65,27 @@ void st_post_def_from_config(const stConfig *c, stPostTest test, stPostDef *d) {
   d->center[1] = c->scene_object_center_y;
   d->offset = c->posteval_generalisation_offset;
   d->repetitions = c->posteval_generalisation_repetitions;
-  switch (test) {
-    case ST_POST_INTEGRATION:
-      d->trials = c->posteval_integration_trials;
-      d->steps = c->integrated_steps;
-      break;
-    case ST_POST_ROBUSTNESS:
-      d->trials = c->posteval_robustness_trials;
-      d->steps = c->integrated_steps;
-      break;
-    default:
-      d->trials = d->cells * d->cells * ST_NPOSTURE * d->repetitions;
-      d->steps = c->posteval_generalisation_steps;
-  }
+  const stPostTestInfo *info = st_post_test_info(test);
+  ST_ASSERT(info);
+  d->trials = info->trials(c);
+  d->steps = info->steps(c);
 }
 
 void st_post_cell_center(const stPostDef *d, int cell, double xy[2]) {
+  ST_ASSERT(d && xy);
+  ST_ASSERT(cell >= 0 && cell < d->cells * d->cells);
   const double mid = 0.5 * (d->cells - 1);
   xy[0] = d->center[0] + (cell / d->cells - mid) * d->cell_size; /* row: along x */
   xy[1] = d->center[1] + (cell % d->cells - mid) * d->cell_size; /* column: along y */
 }
 
 void st_post_trial_layout(const stPostDef *d, int i, stPostTrial *t) {
+  ST_ASSERT(d && t);
+  ST_ASSERT(i >= 0 && i < d->trials);
   memset(t, 0, sizeof *t);
   t->index = i;
   t->steps = d->steps;
-  if (d->test == ST_POST_GENERALISATION) { /* a cell of the grid with each posture */
+  if (st_post_test_info(d->test)->grid) { /* a cell of the grid with each posture */
     const int per_cell = ST_NPOSTURE * d->repetitions;
     t->type = -1;
     t->cell = i / per_cell;
@@ -96,14 +118,17 @@ static void grid_trial(const stPostDef *d, const stScene *s, stRng *rng, stPostT
 }
 
 void st_post_trial(const stPostDef *d, const stScene *s, int i, stPostTrial *t) {
+  ST_ASSERT(d && s && t);
   st_post_trial_layout(d, i, t);
   stRng rng = st_rng_keyed(d->seed, ST_RNG_POSTEVAL, (uint64_t)d->test, 0, (uint64_t)i);
   t->solver_key = st_rng_keyed(d->seed, ST_RNG_POSTEVAL_SOLVER, (uint64_t)d->test, 0, (uint64_t)i).key;
-  if (d->test == ST_POST_GENERALISATION) grid_trial(d, s, &rng, t);
+  if (st_post_test_info(d->test)->grid) grid_trial(d, s, &rng, t);
   else trained_trial(s, &rng, t);
 }
 
 void st_post_episode(const stProtocol *p, const stPostTrial *t, stEpisodeSpec *e) {
+  ST_ASSERT(p && t && e);
+  ST_ASSERT(t->posture >= 0 && t->posture < ST_NPOSTURE);
   memset(e, 0, sizeof *e);
   e->dynamic = 1;
   memcpy(e->qhat0, p->posture[ST_PRIM_REACH][t->posture], sizeof e->qhat0);
@@ -118,19 +143,23 @@ void st_post_episode(const stProtocol *p, const stPostTrial *t, stEpisodeSpec *e
 
 stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, stPostVariant variant,
                        stWordSource *w, char *err, size_t errsz) {
-  if (variant == ST_POST_CARETAKER && test != ST_POST_GENERALISATION)
-    return st__errf(err, errsz, "the caretaker variant belongs to the generalisation test (ST-CT0, "
-                    "ST0; the integration test always hears the caretaker)"), ST_ERR_ARG;
-  if (variant == ST_POST_NO_WORDS && test != ST_POST_INTEGRATION)
-    return st__errf(err, errsz, "the no-words variant belongs to the integration test (robustness "
-                    "and generalisation already hear the condition's autonomous words)"), ST_ERR_ARG;
-  if (variant != ST_POST_OWN_WORDS && variant != ST_POST_CARETAKER && variant != ST_POST_NO_WORDS)
-    return st__errf(err, errsz, "post-evaluation variant %d (expected 0..2)", (int)variant), ST_ERR_ARG;
+  const stPostTestInfo *info = st_post_test_info(test);
+  ST_ASSERT(info && idef && w);
+  if ((int)variant < 0 || (int)variant >= NVARIANTS)
+    return st__errf(err, errsz, "post-evaluation variant %d (expected 0..%d)", (int)variant,
+                    NVARIANTS - 1), ST_ERR_ARG;
+  if (variant != ST_POST_OWN_WORDS && variant != info->variant) {
+    int owner = 0; /* the test whose variant it is */
+    while (owner < ST_POST_NTESTS && g_tests[owner].variant != variant) owner++;
+    return st__errf(err, errsz, "the %s variant belongs to the %s test (%s)",
+                    g_variants[variant].name, st_post_test_name((stPostTest)owner),
+                    g_variants[variant].why), ST_ERR_ARG;
+  }
   if (variant == ST_POST_NO_WORDS) {
     *w = ST_WORDS_NONE;
     return ST_OK;
   }
-  if (test == ST_POST_INTEGRATION || variant == ST_POST_CARETAKER) {
+  if (info->own_caretaker || variant == ST_POST_CARETAKER) {
     *w = ST_WORDS_CARETAKER;
     return ST_OK;
   }
@@ -186,12 +215,14 @@ static const char *prims_name(const stConfig *c) {
 
 void st_post_condition(const stConfig *c, stPostTest test, stPostVariant variant, char *buf,
                        size_t n) {
-  if (test == ST_POST_INTEGRATION)
-    snprintf(buf, n, "%s%s", prims_name(c), variant == ST_POST_NO_WORDS ? "-nowords" : "");
-  else snprintf(buf, n, "%s%s", table21_name(c), variant == ST_POST_CARETAKER ? "0" : "");
+  const stPostTestInfo *info = st_post_test_info(test);
+  ST_ASSERT(info && (int)variant >= 0 && (int)variant < NVARIANTS);
+  snprintf(buf, n, "%s%s", info->populations ? prims_name(c) : table21_name(c),
+           g_variants[variant].suffix);
 }
 
 int st_post_excluded(const stIntegratedDef *idef, int generation, const uint8_t *success, int n) {
+  ST_ASSERT(idef && n >= 0 && (n == 0 || success));
   for (int i = 0; i < n; i++)
     if (success[i] && st_integrated_plan(idef, generation, i).autonomous) return 0;
   return 1;
@@ -254,6 +285,7 @@ int st__post_open_jumped(const char *heard) {
 stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                            const stPostTrial *t, const stController *ctl, stWordSource words,
                            stPostResult *r, stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && idef && ws && t && ctl && r);
   memset(r, 0, sizeof *r);
   stIntegratedDef def = *idef;
   def.steps = t->steps; /* the scorer fills the remainder of this length (unused here) */
@@ -271,6 +303,7 @@ stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stW
 /* ---- results ---- */
 
 void st_post_summarise(const stPostResult *r, int n, int excluded, stPostSummary *s) {
+  ST_ASSERT(s && n >= 0 && (n == 0 || r));
   memset(s, 0, sizeof *s);
   s->trials = n;
   double steps = 0.0;
@@ -290,6 +323,8 @@ static const char *end_name(int end) {
 
 int st_post_write_trials(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
                          const stPostTrial *t, int ntrials, const stPostResult *r) {
+  ST_ASSERT(f && L && nind >= 0 && ntrials >= 0);
+  ST_ASSERT(nind == 0 || (ind && t && r));
   fprintf(f, "test,condition,run,individual,trial,type,cell,posture,repetition,words,success,"
              "reached_step,open_jumped,run_label,heard,end,steps_run,obj_x,obj_y,target_x,"
              "target_y,target_z\n");
@@ -311,6 +346,8 @@ int st_post_write_trials(FILE *f, const stPostLabels *L, const stPostIndividual 
 
 int st_post_write_summary(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
                           int ntrials, const stPostResult *r) {
+  ST_ASSERT(f && L && nind >= 0 && ntrials >= 0);
+  ST_ASSERT(nind == 0 || (ind && r));
   fprintf(f, "test,condition,run,individual,successes,trials,excluded,open_jumped,run_label,"
              "success_rate,mean_steps_to_target,unstable,generation\n");
   for (int i = 0; i < nind; i++) {

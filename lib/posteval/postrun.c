@@ -13,6 +13,7 @@
 
 #include "core/internal.h"
 #include "posteval/journal.h"
+#include "selftalk/evolve.h" /* st_thread_count */
 #include "selftalk/io.h"
 #include "selftalk/posteval.h"
 
@@ -309,19 +310,20 @@ static stStatus check_keys(const postRun *R, char *err, size_t errsz) {
 
 static stStatus load_individuals(postRun *R, char *err, size_t errsz) {
   const stPostRunDef *d = R->def;
-  const int integration = d->test == ST_POST_INTEGRATION;
-  const int per = integration ? R->cfg->posteval_integration_top : 1;
+  const stPostTestInfo *info = st_post_test_info(d->test);
+  const int populations = info->populations;
+  const int per = populations ? R->cfg->posteval_integration_top : 1;
   if (d->ninputs < 1)
-    return st__errf(err, errsz, "no inputs (expected %s)", integration
+    return st__errf(err, errsz, "no inputs (expected %s)", populations
                     ? "population files or primitive run directories"
                     : "integrated run directories"), ST_ERR_ARG;
   R->nind = d->ninputs * per;
   R->ind = calloc((size_t)R->nind, sizeof *R->ind);
   if (!R->ind) return st__errf(err, errsz, "posteval: out of memory"), ST_ERR_NOMEM;
   const int ngenes = st_arch_ngenes((stNetArch)R->cfg->network_arch);
-  const int exclusion = d->test == ST_POST_GENERALISATION && !d->variant;
+  const int exclusion = info->excludes && d->variant == ST_POST_OWN_WORDS;
   for (int i = 0; i < d->ninputs; i++) {
-    stStatus st = integration
+    stStatus st = populations
                       ? st_post_load_population(d->inputs[i], per, ngenes, &R->ind[i * per], err, errsz)
                       : st_post_load_run(d->inputs[i], R->cfg, exclusion, &R->ind[i], err, errsz);
     if (st) return st;
@@ -374,8 +376,7 @@ static stStatus plan(postRun *R, char *err, size_t errsz) {
   R->labels.test = st_post_test_name(d->test);
   R->labels.condition = R->condition;
   R->labels.words = R->words;
-  R->threads = d->threads > 0 ? d->threads : R->cfg->run_threads > 0 ? R->cfg->run_threads
-                                                                        : omp_get_num_procs();
+  R->threads = st_thread_count(d->threads, R->cfg);
   return ST_OK;
 }
 
@@ -580,6 +581,7 @@ static void release(postRun *R) {
 }
 
 stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz) {
+  ST_ASSERT(def);
   postRun R;
   memset(&R, 0, sizeof R);
   R.def = def;

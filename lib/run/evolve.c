@@ -132,7 +132,7 @@ static stStatus write_checkpoint(run *R, int generation, int done, const stGenom
 /* ---- evaluation ---- */
 
 static const char *stage_label(const run *R) {
-  return R->integrated ? "integrated" : st_stage_name(R->stages[R->stage_idx]);
+  return R->integrated ? ST_INTEGRATED_STAGE_NAME : st_stage_name(R->stages[R->stage_idx]);
 }
 
 /* the generation's tasks: the individuals in GA order */
@@ -145,6 +145,11 @@ static void make_tasks(run *R, int generation) {
     t->individual = i;
     t->genome = *st_ga_genome(R->ga, i);
   }
+}
+
+int st_thread_count(int requested, const stConfig *cfg) {
+  if (requested > 0) return requested;
+  return cfg && cfg->run_threads > 0 ? cfg->run_threads : omp_get_num_procs();
 }
 
 /* every task on this process's threads */
@@ -518,7 +523,7 @@ static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz
   st_integrated_def_from_config(cfg, &R->idef);
   const int cap = R->integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations;
   R->limit = def->generations > 0 ? def->generations : cap;
-  R->threads = def->threads > 0 ? def->threads : cfg->run_threads > 0 ? cfg->run_threads : omp_get_num_procs();
+  R->threads = st_thread_count(def->threads, cfg);
   return ST_OK;
 }
 
@@ -597,6 +602,7 @@ static void release(run *R) {
 }
 
 stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
+  ST_ASSERT(def && def->cfg);
   run R;
   memset(&R, 0, sizeof R);
   R.def = def;

@@ -10,6 +10,7 @@
 /* the primitive stages evolve the base network; the integrated stage network.arch's */
 void st_evolve_task_run(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                         const stEvolveTask *t, stEvolveResult *r) {
+  ST_ASSERT(p && idef && ws && t && r);
   memset(r, 0, sizeof *r);
   r->individual = t->individual;
   stNetParams np;

@@ -3,7 +3,10 @@
 
 #include <string.h>
 
+#include "core/internal.h"
+
 void st_caretaker_init(stCaretaker *c, const stConfig *cfg) {
+  ST_ASSERT(c && cfg);
   memset(c, 0, sizeof *c);
   c->label = -1;
   c->first_step = cfg->caretaker_first_step;
@@ -13,6 +16,7 @@ void st_caretaker_init(stCaretaker *c, const stConfig *cfg) {
 
 int st_caretaker_done(const stCaretaker *c, const stFitnessDef *d, int p, const stQuantities *q,
                       const stContacts *k) {
+  ST_ASSERT(c && d && q && k);
   switch (p) {
     case ST_PRIM_REACH:
     case ST_PRIM_OPEN: return st_success_now(d, ST_STAGE_MAIN, p, q);
@@ -28,6 +32,8 @@ int st_caretaker_done(const stCaretaker *c, const stFitnessDef *d, int p, const 
 
 int st_caretaker_word(stCaretaker *c, const stFitnessDef *d, int step, const stQuantities *q,
                       const stContacts *k) {
+  ST_ASSERT(c && d && q && k);
+  ST_ASSERT(step >= 0);
   if (step < c->first_step) return -1;
   if (c->label < 0) c->label = ST_PRIM_REACH;
   /* switch on success; a word already satisfied when first due is jumped */

@@ -3,14 +3,6 @@
 
 #include <math.h>
 
-static const char *const PRIM_NAMES[ST_NPRIM] = {"reach", "open", "grasp", "move"};
-
-const char *st_primitive_name(int p) { return p >= 0 && p < ST_NPRIM ? PRIM_NAMES[p] : "?"; }
-
-const char *st_stage_name(stStage s) {
-  return s == ST_STAGE_SIMPLE ? "simple-prim" : s == ST_STAGE_MAIN ? "main-prim" : "?";
-}
-
 void st_fitness_def_from_config(const stConfig *c, stFitnessDef *d) {
   d->focus_weight = c->fitness_focus_weight;
   d->decay = c->fitness_decay;

@@ -336,6 +336,7 @@ stStatus st_posture_varied(const stRobot *r, const stScene *s, int prim, int k,
 
 stStatus st_postures_all(const stRobot *r, const stScene *s,
                          double qhat[ST_NPRIM][ST_NPOSTURE][ST_NDOF], char *err, size_t errsz) {
+  ST_ASSERT(r && s && qhat);
   for (int p = 0; p < ST_NPRIM; p++)
     for (int k = 0; k < ST_NPOSTURE; k++) {
       stStatus st = st_posture(r, s, p, k, qhat[p][k], err, errsz);
@@ -362,6 +363,8 @@ static double dist3(const double *a, const double *b) {
 /* the properties that need the world; returns 1 / 0 with why */
 int st_posture_reach_steps(const stRobot *r, const stScene *s, int k, const double qhat[ST_NDOF],
                            int max_steps) {
+  ST_ASSERT(r && s && qhat);
+  ST_ASSERT(k >= 0 && k < ST_NPOSTURE);
   double goal[3] = {s->obj_pos[k][0], s->obj_pos[k][1], s->obj_pos[k][2] + PD.reach_height};
   double q[ST_NDOF];
   memcpy(q, qhat, sizeof q);

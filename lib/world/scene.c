@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "core/internal.h"
+
 void st_scene_from_config(const stConfig *c, stScene *s) {
   memset(s, 0, sizeof *s);
   s->table_top_z = c->scene_table_top_z;
@@ -69,6 +71,9 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
 }
 
 void st_scene_object(const stScene *s, int k, int with_offset, stRng *rng, double pos[3]) {
+  ST_ASSERT(s && pos);
+  ST_ASSERT(k >= 0 && (size_t)k < sizeof s->obj_pos / sizeof s->obj_pos[0]);
+  ST_ASSERT(!with_offset || rng);
   memcpy(pos, s->obj_pos[k], sizeof s->obj_pos[k]);
   if (with_offset) {
     pos[0] += st_rng_range(rng, -s->obj_offset, s->obj_offset);
@@ -77,6 +82,8 @@ void st_scene_object(const stScene *s, int k, int with_offset, stRng *rng, doubl
 }
 
 void st_scene_target(const stScene *s, int k, stRng *rng, double pos[3]) {
+  ST_ASSERT(s && pos);
+  ST_ASSERT(k >= 0 && (size_t)k < sizeof s->target / sizeof s->target[0]);
   memcpy(pos, s->target[k], sizeof s->target[k]);
   if (rng)
     for (int i = 0; i < 3; i++) pos[i] += st_rng_range(rng, -s->target_offset, s->target_offset);

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/internal.h"
 #include "selftalk/genome.h"
 
 void st_sensor_def_from_config(const stConfig *c, stSensorDef *d) {
@@ -23,6 +24,7 @@ static double dist(const double *a, const double *b) {
 }
 
 void st_quantities(const stWorld *w, const stSensorDef *def, stQuantities *q) {
+  ST_ASSERT(w && def && q);
   const stRobot *r = w->robot;
   memcpy(q->palm, w->p[r->palm_body], sizeof q->palm);
   const double *R = w->R[r->palm_body];
@@ -51,6 +53,7 @@ double st_focus_correctness(double y, int right_is_target) { return right_is_tar
 void st_sensor_inputs(const stWorld *w, const stSensorDef *def, const stQuantities *q,
                       int focus_target, int first_step, const double *ling, double secondary,
                       double *in, int n) {
+  ST_ASSERT(w && def && q && in);
   for (int d = 0; d < ST_NDOF; d++) in[d] = w->qhat[d];
   for (int i = 0; i < ST_NTOUCH; i++) in[ST_NET_IN_TOUCH + i] = w->contacts.touch[i];
   const double *f = focus_target ? w->target : w->obj;
@@ -61,14 +64,17 @@ void st_sensor_inputs(const stWorld *w, const stSensorDef *def, const stQuantiti
 }
 
 double st_penalty_table(const stWorld *w, const stSensorDef *def) {
+  ST_ASSERT(w && def);
   return w->contacts.arm_table ? def->penalty_table : 0.0;
 }
 
 double st_penalty_object(const stWorld *w, const stSensorDef *def) {
+  ST_ASSERT(w && def);
   return w->contacts.robot_object ? def->penalty_object : 0.0;
 }
 
 double st_penalty_moving(const stWorld *w, const stSensorDef *def) {
+  ST_ASSERT(w && def);
   double d = dist(w->obj, w->obj_start);
   if (d < def->move_free) return 0.0;
   double p = d / def->move_scale;

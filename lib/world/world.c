@@ -65,6 +65,7 @@ void st_world_destroy(stWorld *w) {
 }
 
 void st_world_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]) {
+  ST_ASSERT(w && qhat && obj && target);
   backend(w)->reset(w, qhat, obj, target);
 }
 
@@ -81,6 +82,7 @@ double st_actuate(double qhat, double y, double alpha, double vmax_deg, double d
 
 /* the kinematic mode's step: the actuation law on qhat, then the backend's poses and contacts */
 void st_world_step_kinematic(stWorld *w, const double *y) {
+  ST_ASSERT(w && y);
   const stRobot *r = w->robot;
   const double vmax_deg = r->max_velocity / ST_DEG;
   for (int d = 0; d < ST_NDOF; d++) {
@@ -92,6 +94,7 @@ void st_world_step_kinematic(stWorld *w, const double *y) {
 }
 
 void st_world_step_dynamic(stWorld *w, const double *y) {
+  ST_ASSERT(w && y);
   if (backend(w)->step) backend(w)->step(w, y);
   else st_world_step_kinematic(w, y);
 }
@@ -99,6 +102,8 @@ void st_world_step_dynamic(stWorld *w, const double *y) {
 void st_world_step(stWorld *w, const double *y) { st_world_step_dynamic(w, y); }
 
 void st_world_point(const stWorld *w, int b, const double l[3], double out[3]) {
+  ST_ASSERT(w && l && out);
+  ST_ASSERT(b >= 0 && b < w->robot->nbody);
   st__frame_point(w->R[b], w->p[b], l, out);
 }
 
@@ -111,6 +116,7 @@ void st_world_set_seed(stWorld *w, uint64_t key) {
 }
 
 void st_world_set_object_table_collision(stWorld *w, int on) {
+  ST_ASSERT(w);
   if (backend(w)->set_object_table_collision) backend(w)->set_object_table_collision(w, on);
 }
 
@@ -217,6 +223,7 @@ static int scene_shapes(const stWorld *w, stShape out[4]) {
 }
 
 int st_world_shapes(const stWorld *w, stShape *out, int max) {
+  ST_ASSERT(w && max >= 0 && (out || max == 0));
   const int ngeom = w->robot->model->ngeom;
   stShape scene[4];
   const int nscene = scene_shapes(w, scene);

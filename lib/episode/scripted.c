@@ -450,6 +450,7 @@ static void scripted_act(void *self, const stWorld *w, const stQuantities *q, co
 /* ---- creation ------------------------------------------------------------------------------- */
 
 stStatus st_scripted_create(const stProtocol *p, stScripted **out, char *err, size_t errsz) {
+  ST_ASSERT(p && p->robot && out);
   *out = NULL;
   stScripted *s = calloc(1, sizeof *s);
   if (s) {
@@ -480,9 +481,10 @@ void st_scripted_destroy(stScripted *s) {
 }
 
 const char *st_scripted_phase(const stScripted *s) {
+  ST_ASSERT(s);
   switch (s->word) {
-    case ST_PRIM_REACH: return "reach";
-    case ST_PRIM_OPEN: return "open";
+    case ST_PRIM_REACH:
+    case ST_PRIM_OPEN: return st_primitive_name(s->word);
     case ST_PRIM_GRASP:
       return s->grasp_phase == GR_APPROACH ? "grasp:approach"
              : s->grasp_phase == GR_CLOSE  ? "grasp:close"
@@ -496,6 +498,7 @@ const char *st_scripted_phase(const stScripted *s) {
 }
 
 stController st_scripted_controller(stScripted *s) {
+  ST_ASSERT(s);
   stController c = {scripted_reset, scripted_act, ST_NET_IN_LING + ST_NET_NLING, s, ST_NET_NOUT, 0};
   return c;
 }
@@ -505,6 +508,7 @@ stController st_scripted_controller(stScripted *s) {
 stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted *s, int index,
                                 stTrialResult *r, stTraceFn trace, void *ctx, char *err,
                                 size_t errsz) {
+  ST_ASSERT(p && ws && s && r);
   if (index < 0 || index >= ST_PRIM_TRIALS) {
     memset(r, 0, sizeof *r);
     st__errf(err, errsz, "scripted: trial %d (expected 0..%d)", index, ST_PRIM_TRIALS - 1);
@@ -521,6 +525,7 @@ stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted
 stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted *s, int k, int t,
                                 stIntTrialResult *r, stTraceFn trace, void *ctx, char *err,
                                 size_t errsz) {
+  ST_ASSERT(p && ws && s && r);
   if (k < 0 || k >= ST_NPOSTURE || t < 0 || t > 1) {
     memset(r, 0, sizeof *r);
     st__errf(err, errsz, "scripted: integrated posture %d, target %d (expected 0..%d, 0..1)", k, t,
@@ -534,9 +539,8 @@ stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted
                                     (uint64_t)(2 * k + t)).key;
   stEpisodeSpec e;
   st_int_episode(p, &def, k, t, NULL, key, &e);
-  const stWords words = st_int_words(p, ST_WORDS_CARETAKER);
+  /* the caretaker's words, scored by the integrated fitness (no prediction: it does not talk) */
+  const stIntPlan plan = {ST_WORDS_CARETAKER, ST_FIT_INTEGRATED, 1.0, 0};
   const stController c = st_scripted_controller(s);
-  stIntScorer is;
-  const stScorer sc = st_int_scorer(&is, p, &def, r, NULL);
-  return st_episode_run(p, ws, &e, &c, &words, &sc, trace, ctx, err, errsz);
+  return st_int_run_with(p, &def, ws, &e, &c, &plan, r, NULL, trace, ctx, err, errsz);
 }
