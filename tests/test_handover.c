@@ -374,7 +374,7 @@ static void test_chain_sum(void) {
   CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
   stNetParams np; /* a genotype that fails some fixed trials, so that the gate weighs */
   CU_ASSERT_FATAL(evolved_net_at(&np, 60));
-  stWorkspace ws = {NULL, NULL};
+  stWorkspace ws = {NULL, NULL, NULL};
   const int gen = 2, ind = 3;
   stEvaluation e, e0;
   CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
