@@ -59,7 +59,9 @@ skip() {
 }
 command -v mpirun > /dev/null || skip "no mpirun (make deps installs OpenMPI)"
 if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
-if ! "$EV" --help 2>&1 | grep -q "built with MPI"; then
+# (grep reads all its input, not -q: under pipefail a writer cut off by -q's early exit fails the
+# pipeline, SIGPIPE, however well the line matched)
+if ! "$EV" --help 2>&1 | grep "built with MPI" > /dev/null; then
   # an evolve without MPI under mpirun refuses (every rank would run the whole evolution)
   timeout -k 10 60 mpirun -q --oversubscribe -n 2 "$EV" $cfg --out "$tmp/nompi" > /dev/null 2> "$tmp/nompi.err"; rc=$?
   if [ $rc != 0 ] && [ ! -e "$tmp/nompi" ] && [ "$(grep -c "started as 2 MPI ranks, but built without MPI" "$tmp/nompi.err")" = 1 ]; then
@@ -74,7 +76,7 @@ fi
 # unfreed; every other check of the sanitizers stays on (the link-order check is off: start_run
 # preloads the fault shim before libasan)
 mpienv=()
-if ldd "$EV" 2> /dev/null | grep -q libasan; then
+if ldd "$EV" 2> /dev/null | grep libasan > /dev/null; then
   mpienv=(env "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0:verify_asan_link_order=0")
 fi
 # -q: OpenMPI's own notices; a bound on the time (a hang must fail the check, not the suite)
@@ -156,7 +158,7 @@ descendants() { # PID
 rank_pid() { # PID RANK
   local p
   for p in $(descendants "$1"); do
-    tr '\0' '\n' < "/proc/$p/environ" 2> /dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$2" && echo "$p"
+    tr '\0' '\n' < "/proc/$p/environ" 2> /dev/null | grep -x "OMPI_COMM_WORLD_RANK=$2" > /dev/null && echo "$p"
   done
 }
 # starts an MPI run in the background into DIR and waits for its generation 1 (its checkpoint);
