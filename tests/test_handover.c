@@ -290,6 +290,37 @@ static void test_handover_fitness(void) {
   st_protocol_destroy(off);
 }
 
+/* main-prim without chained trials (off) and with cfg's (p), both evaluated for genotype
+ * `index` of EVOLVED at generation 2, individual 3 (e0, e); ws and np for the trials rerun */
+typedef struct chainCase {
+  stProtocol *off, *p;
+  stNetParams np;
+  stWorkspace ws;
+  stEvaluation e, e0;
+} chainCase;
+
+static int chain_case(const stConfig *cfg, int index, chainCase *k) {
+  stConfig c;
+  st_config_default(&c);
+  c.stage_stages = ST_STAGES_MAIN;
+  memset(k, 0, sizeof *k);
+  char err[512] = "";
+  if (st_protocol_create(&c, &k->off, err, sizeof err) || st_protocol_create(cfg, &k->p, err, sizeof err) ||
+      !evolved_net_at(&k->np, index) ||
+      st_stage_evaluate(k->p, &k->ws, ST_STAGE_MAIN, 2, 3, &k->np, &k->e, err, sizeof err) ||
+      st_stage_evaluate(k->off, &k->ws, ST_STAGE_MAIN, 2, 3, &k->np, &k->e0, err, sizeof err)) {
+    fprintf(stderr, "%s\n", err);
+    return 0;
+  }
+  return 1;
+}
+
+static void chain_case_free(chainCase *k) {
+  st_workspace_free(&k->ws);
+  st_protocol_destroy(k->p);
+  st_protocol_destroy(k->off);
+}
+
 /* Main-prim's chained trials (stage.chain_trials): F is the harmonic mean of the four F_p,
  * which they leave unchanged, and f_chain; f_chain is eq. 2.14 over the integrated stage's
  * trials with the caretaker's words: B (10 per move or focus bonus) + 100 / (n x 240) times
@@ -299,18 +330,15 @@ static void test_chain_fitness(void) {
   stConfig c;
   st_config_default(&c);
   c.stage_stages = ST_STAGES_MAIN;
-  stProtocol *off = NULL, *p = NULL;
-  char err[512] = "";
-  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &off, err, sizeof err), ST_OK);
   c.stage_chain_trials = 3;
-  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
-  stNetParams np;
-  CU_ASSERT_FATAL(evolved_net(&np));
-  stWorkspace ws = {NULL, NULL, NULL};
+  chainCase k;
+  CU_ASSERT_FATAL(chain_case(&c, 0, &k));
+  stProtocol *p = k.p;
+  stWorkspace ws = k.ws;
+  const stNetParams np = k.np;
+  const stEvaluation e = k.e, e0 = k.e0;
   const int gen = 2, ind = 3;
-  stEvaluation e, e0;
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
+  char err[512] = "";
   stIntegratedDef def;
   st_chain_def_from_config(&p->cfg, &def);
   CU_ASSERT_EQUAL(def.arch, ST_ARCH_BASE);
@@ -351,9 +379,8 @@ static void test_chain_fitness(void) {
   c.integrated_trials = 4; /* the chained trials' count is stage.chain_trials */
   CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "integrated.trials");
-  st_workspace_free(&ws);
-  st_protocol_destroy(p);
-  st_protocol_destroy(off);
+  k.ws = ws;
+  chain_case_free(&k);
 }
 
 /* stage.chain_combine = sum: F is the harmonic mean of the four F_p (those of the protocol
@@ -364,21 +391,18 @@ static void test_chain_sum(void) {
   stConfig c;
   st_config_default(&c);
   c.stage_stages = ST_STAGES_MAIN;
-  stProtocol *off = NULL, *p = NULL;
-  char err[512] = "";
-  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &off, err, sizeof err), ST_OK);
   c.stage_chain_trials = 3;
   c.stage_chain_combine = ST_CHAIN_SUM;
   c.stage_chain_gate = 2.0;
   c.stage_chain_progress = 10.0;
-  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
-  stNetParams np; /* a genotype that fails some fixed trials, so that the gate weighs */
-  CU_ASSERT_FATAL(evolved_net_at(&np, 60));
-  stWorkspace ws = {NULL, NULL, NULL};
+  chainCase k; /* genotype 60: it fails some fixed trials, so that the gate weighs */
+  CU_ASSERT_FATAL(chain_case(&c, 60, &k));
+  stProtocol *p = k.p;
+  stWorkspace ws = k.ws;
+  const stNetParams np = k.np;
+  const stEvaluation e = k.e, e0 = k.e0;
   const int gen = 2, ind = 3;
-  stEvaluation e, e0;
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
+  char err[512] = "";
   stIntegratedDef def;
   st_chain_def_from_config(&p->cfg, &def);
   double bonus = 0.0, points = 0.0, furthest = 0.0;
@@ -419,9 +443,8 @@ static void test_chain_sum(void) {
   ST_ASSERT_CONTAINS(err, "expected stage.chain_combine = sum");
   c.stage_chain_combine = ST_CHAIN_SUM;
   CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
-  st_workspace_free(&ws);
-  st_protocol_destroy(p);
-  st_protocol_destroy(off);
+  k.ws = ws;
+  chain_case_free(&k);
 }
 
 /* The keys: the roll-in length acts only with stage.handover; the caretaker's keys are read by
