@@ -19,8 +19,9 @@
 
 /* ST_ASSERT(cond): a broken precondition of a public function (a programmer error, which
  * stStatus does not report: see selftalk/base.h) aborts with the function, file:line and the
- * condition, as Box2D's B2_ASSERT does. On where ST_ASSERTS is defined (`make asan`, `make
- * debug`, or ASSERTS=1); in release builds the condition is only type-checked, never
+ * condition, as Box2D's B2_ASSERT does. On where ST_ASSERTS is defined (`make asan`, or
+ * ASSERTS=1, as in the debug build `make OPT="-O0 -g" ASSERTS=1`); in release builds the
+ * condition is only type-checked, never
  * evaluated, so it must have no side effect and costs nothing. */
 #if defined(ST_ASSERTS)
 #define ST_ASSERT(cond) \
