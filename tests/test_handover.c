@@ -331,12 +331,11 @@ static void test_chain_fitness(void) {
   st_config_default(&c);
   c.stage_stages = ST_STAGES_MAIN;
   c.stage_chain_trials = 3;
-  chainCase k;
-  CU_ASSERT_FATAL(chain_case(&c, 0, &k));
-  stProtocol *p = k.p;
-  stWorkspace ws = k.ws;
-  const stNetParams np = k.np;
-  const stEvaluation e = k.e, e0 = k.e0;
+  chainCase cc;
+  CU_ASSERT_FATAL(chain_case(&c, 0, &cc));
+  stProtocol *p = cc.p;
+  const stNetParams np = cc.np;
+  const stEvaluation e = cc.e, e0 = cc.e0;
   const int gen = 2, ind = 3;
   char err[512] = "";
   stIntegratedDef def;
@@ -348,7 +347,7 @@ static void test_chain_fitness(void) {
   for (int i = 0; i < 3; i++) {
     stIntPlan plan;
     stIntTrialResult r;
-    CU_ASSERT_EQUAL_FATAL(st_int_trial_run(p, &def, &ws, gen, ind, i, &np, &plan, &r, NULL, NULL,
+    CU_ASSERT_EQUAL_FATAL(st_int_trial_run(p, &def, &cc.ws, gen, ind, i, &np, &plan, &r, NULL, NULL,
                                            NULL, err, sizeof err), ST_OK);
     CU_ASSERT(plan.words == ST_WORDS_CARETAKER && plan.fitness == ST_FIT_INTEGRATED &&
               plan.bonus_factor == 1.0);
@@ -379,8 +378,7 @@ static void test_chain_fitness(void) {
   c.integrated_trials = 4; /* the chained trials' count is stage.chain_trials */
   CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "integrated.trials");
-  k.ws = ws;
-  chain_case_free(&k);
+  chain_case_free(&cc);
 }
 
 /* stage.chain_combine = sum: F is the harmonic mean of the four F_p (those of the protocol
@@ -395,12 +393,11 @@ static void test_chain_sum(void) {
   c.stage_chain_combine = ST_CHAIN_SUM;
   c.stage_chain_gate = 2.0;
   c.stage_chain_progress = 10.0;
-  chainCase k; /* genotype 60: it fails some fixed trials, so that the gate weighs */
-  CU_ASSERT_FATAL(chain_case(&c, 60, &k));
-  stProtocol *p = k.p;
-  stWorkspace ws = k.ws;
-  const stNetParams np = k.np;
-  const stEvaluation e = k.e, e0 = k.e0;
+  chainCase cc; /* genotype 60: it fails some fixed trials, so that the gate weighs */
+  CU_ASSERT_FATAL(chain_case(&c, 60, &cc));
+  stProtocol *p = cc.p;
+  const stNetParams np = cc.np;
+  const stEvaluation e = cc.e, e0 = cc.e0;
   const int gen = 2, ind = 3;
   char err[512] = "";
   stIntegratedDef def;
@@ -411,7 +408,7 @@ static void test_chain_sum(void) {
     stIntTrialResult r;
     rec *t = calloc(1, sizeof *t);
     CU_ASSERT_FATAL(t != NULL);
-    CU_ASSERT_EQUAL_FATAL(st_int_trial_run(p, &def, &ws, gen, ind, i, &np, &plan, &r, NULL, on_step,
+    CU_ASSERT_EQUAL_FATAL(st_int_trial_run(p, &def, &cc.ws, gen, ind, i, &np, &plan, &r, NULL, on_step,
                                            t, err, sizeof err), ST_OK);
     int far = 0;
     for (int k = 0; k < t->n; k++) far = t->word[k] > far ? t->word[k] : far;
@@ -443,8 +440,7 @@ static void test_chain_sum(void) {
   ST_ASSERT_CONTAINS(err, "expected stage.chain_combine = sum");
   c.stage_chain_combine = ST_CHAIN_SUM;
   CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
-  k.ws = ws;
-  chain_case_free(&k);
+  chain_case_free(&cc);
 }
 
 /* The keys: the roll-in length acts only with stage.handover; the caretaker's keys are read by
