@@ -77,9 +77,11 @@ else ko "stopped after a run's last checkpoint" "$(cat "$tmp/d.out")"; fi
 # its population, the same seed, and the integration test on those runs
 if $REP OUT="$tmp/a" PROTOCOL=chain chain > "$tmp/ch.out" 2>&1 &&
    grep -q "^chain_trials = 2$" "$tmp/a/chain-s2/config.ini" &&
+   grep -q "^handover = true$" "$tmp/a/chain-s2/config.ini" &&
    grep -q "^init_population = $tmp/a/prims-s2/population.genome$" "$tmp/a/chain-s2/config.ini" &&
    grep -q "^seed = 2$" "$tmp/a/chain-s2/config.ini" && [ -s "$tmp/a/chain-s1/population.genome" ] &&
-   [ "$(head -1 "$tmp/a/chain-s1/fitness.csv" | grep -o 'best_c[0-9]*' | wc -l)" = 2 ]; then
+   [ "$(head -1 "$tmp/a/chain-s1/fitness.csv" | grep -o 'best_c[0-9]*' | wc -l)" = 2 ] &&
+   [ "$(head -1 "$tmp/a/chain-s1/fitness.csv" | grep -o 'best_h[0-9][0-9]*' | wc -l)" = 12 ]; then
   ok "PROTOCOL=chain: the chain stage from each primitive run"
 else ko "PROTOCOL=chain" "$(tail -3 "$tmp/ch.out")"; fi
 if [ "$($REP jobs STEP=chain OUT=x PROTOCOL=chain | wc -l)" = 2 ] &&

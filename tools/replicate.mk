@@ -49,7 +49,8 @@ else ifeq ($(PRESET),tiny)
 RUNS ?= 2
 GA_TINY := --set ga.population=20 --set ga.elites=2 --set ga.parents=4
 PRIM_ARGS ?= --generations 2 $(GA_TINY)
-CHAIN_ARGS ?= --generations 2 $(GA_TINY) --set stage.chain_trials=2 --set integrated.steps=20
+CHAIN_ARGS ?= --generations 2 $(GA_TINY) --set stage.chain_trials=2 --set integrated.steps=20 \
+  --set stage.handover_rollin_steps=20
 INT_ARGS ?= --generations 2 $(GA_TINY) --set integrated.trials=4 --set integrated.steps=20
 INTEG_ARGS ?= --set posteval.integration_top=2 --set posteval.integration_trials=4
 FIG3_3_ARGS ?= --bin 1

@@ -34,8 +34,10 @@ KEYS_chain_sum := $(CHAIN_SUM)
 KEYS_chain_gated := $(CHAIN_SUM) --set stage.chain_gate=8
 KEYS_handover_chain_gated := --set stage.handover=true $(CHAIN_SUM) --set stage.chain_gate=8
 KEYS_handover_chain_sum := --set stage.handover=true $(CHAIN_SUM)
+# the same with twice the thesis's bit-flip rate: more exploration where no genotype chains
+KEYS_handover_chain_gated_mut := $(KEYS_handover_chain_gated) --set ga.mutation_rate=0.01
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
-  chain_gated handover_chain_gated handover_chain_sum
+  chain_gated handover_chain_gated handover_chain_sum handover_chain_gated_mut
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
 $(error CAND=$(CAND): expected one of $(CANDIDATES))
