@@ -8,8 +8,8 @@
 #                   abort when broken; a debug build is `make OPT="-O0 -g" ASSERTS=1`
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
-#   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable
-#                   (tools/replicate.mk; README.md, "Replicating the study")
+#   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable, priced
+#                   first (tools/replicate.mk; README.md, "Replicating the study")
 #   make fuzz       fuzz targets (clang's libFuzzer, ASan + UBSan) and seed corpora in build-fuzz/;
 #                   make fuzz-run [FUZZ_RUNS=1000000] runs each (not part of make test)
 #   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
@@ -184,11 +184,13 @@ $(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FU
 test run asan valgrind bench replicate: deps
 	@$(MAKE) --no-print-directory $@-only
 
-# the main job: the simple-prim stage, then what it gave (summary, files, PNG plot)
-# every step's files under OUT; a killed replication continues where it stopped
+# every step's files under OUT; a killed replication continues where it stopped. Its cost
+# first (tools/replicate.mk's target cost: measured here, printed, no prompt)
 replicate-only: all
+	@$(MAKE) --no-print-directory -f tools/replicate.mk PYTHON=$(PYTHON) EVAL_COST=$(BUILD)/eval_cost cost
 	@$(MAKE) --no-print-directory -f tools/replicate.mk PYTHON=$(PYTHON)
 
+# the main job: the simple-prim stage, then what it gave (summary, files, PNG plot)
 run-only: all
 	./$(APPDIR)/evolve $(RUN_CONFIG) --out $(RUN_DIR)
 	@$(PYTHON) tools/run_report.py $(RUN_DIR)

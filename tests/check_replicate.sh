@@ -2,10 +2,12 @@
 # make replicate end to end (tools/replicate.mk, PRESET=tiny: 2 runs of every step, a few
 # generations, tiny post-evaluations): every step's files and report.md appear; a replication
 # killed in the middle of its integrated runs continues, when started again, to the same files
-# as one never stopped; bad presets and steps are refused.
+# as one never stopped; its cost is printed before it starts (target cost), measured once; bad
+# presets, steps and inputs are refused.
 set -uo pipefail
 CHECK=check_replicate
 . "$(dirname "$0")/check_lib.sh"
+BUILD=${BUILD:-build}
 REP="make --no-print-directory -s -f tools/replicate.mk PRESET=tiny THREADS=1"
 
 # the uninterrupted replication
@@ -92,6 +94,69 @@ else ko "PROTOCOL=chain integration"; fi
 $REP OUT="$tmp/c" PROTOCOL=mine > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "PROTOCOL=mine: expected chain or thesis" "$tmp/e"; then
   ok "an unknown protocol is refused"; else ko "unknown protocol" "$(cat "$tmp/e")"; fi
+
+# the cost, before anything runs (target cost, tools/replicate_cost.py): a row per step and a
+# total, from costs measured once (OUT/cost/costs.csv) and taken from there the second time
+COST="$REP EVAL_COST=$BUILD/eval_cost COST_SAMPLE=1"
+rows='^prims: simple-prim |^prims: main-prim |^integration test |^integrated (ST-CT|ST|CT|NI) |^robustness |^generalisation |^stats, figures, report |^total '
+if $COST cost OUT="$tmp/p" > "$tmp/p.out" 2> "$tmp/p.err" &&
+   [ "$(grep -cE "$rows" "$tmp/p.out")" = 11 ] && grep -q "^Expected: .* core-hours, .* hours on 1 thread; at most" "$tmp/p.out" &&
+   grep -q "measuring what one evaluation costs" "$tmp/p.err" && grep -q "measured now on host" "$tmp/p.out" &&
+   [ "$(grep -c "^$(hostname)," "$tmp/p/cost/costs.csv")" = 17 ]; then
+  ok "cost: a row per step and a total, 17 kinds measured"
+else ko "cost" "$(cat "$tmp/p.err"; head -20 "$tmp/p.out")"; fi
+cp "$tmp/p/cost/costs.csv" "$tmp/costs1.csv"
+if $COST cost OUT="$tmp/p" > "$tmp/p2.out" 2> "$tmp/p.err" && [ ! -s "$tmp/p.err" ] &&
+   grep -q "measured earlier on host" "$tmp/p2.out" && cmp -s "$tmp/p/cost/costs.csv" "$tmp/costs1.csv" &&
+   [ "$(grep -cE "$rows" "$tmp/p2.out")" = 11 ]; then
+  ok "cost: the second time from OUT/cost/costs.csv, nothing measured"
+else ko "cost, cached" "$(cat "$tmp/p.err")"; fi
+if $COST cost OUT="$tmp/p" REMEASURE=1 > "$tmp/p3.out" 2> "$tmp/p.err" &&
+   grep -q "measured now on host" "$tmp/p3.out" && [ "$(grep -c "^$(hostname)," "$tmp/p/cost/costs.csv")" = 17 ]; then
+  ok "cost: REMEASURE=1 measures again"
+else ko "cost, REMEASURE=1" "$(cat "$tmp/p.err")"; fi
+if $COST cost OUT="$tmp/p" PROTOCOL=chain > "$tmp/p4.out" 2> "$tmp/p.err" &&
+   [ "$(grep -cE "$rows|^chain " "$tmp/p4.out")" = 12 ] && grep -q "chain-stage individual .* of data/evolved/chain_candidates" "$tmp/p4.out"; then
+  ok "cost: PROTOCOL=chain has the chain stage's row"
+else ko "cost, PROTOCOL=chain" "$(cat "$tmp/p.err")"; fi
+# make replicate prints it before its first job
+make -n --no-print-directory replicate-only PRESET=tiny OUT="$tmp/n" BUILD="$BUILD" APPDIR="$APPDIR" > "$tmp/n.out" 2> /dev/null
+if [ "$(grep -oE "tools/replicate_cost.py|evolve configs/" "$tmp/n.out" | sed -n 1p)" = tools/replicate_cost.py ]; then
+  ok "make replicate prices the study before its first job"
+else ko "make replicate prices first"; fi
+# the arithmetic, with costs given (--assume), by hand: full preset, 10 runs of 100 individuals;
+# prims 10 x 100 x (484 x 0.002 + 97 x 0.5) = 49468 s, at most 10 x 100 x 1500 x 0.5 = 750000 s;
+# integrated 4 x 10 x 100 x 100 x 0.6 = 240000 s; tests 10 x 10 x 40 x 0.05 + 4 x 10 x 40 x 0.1 +
+# 6 x 10 x 7 x 7 x 4 x 10 x 0.1 = 12120 s: 83.77 core-hours (at most 278.37); on 2 threads half
+# of it; on 64, a generation of 100 takes 2 rounds (50 at a time): 289468 / 50 + 12120 / 64 s =
+# 1.66 h (at most 990000 / 50 + 12120 / 64 s = 5.55 h)
+assume=(--assume simple-prim=0.002 --assume main-prim=0.5 --assume integration=0.05
+  --assume 'integrated-*=0.6' --assume 'robustness-*=0.1' --assume 'generalisation-*=0.1' --assume chain=1)
+price() { python3 tools/replicate_cost.py --preset full --runs 10 --out "$tmp/q" --eval-cost "$BUILD/eval_cost" "${assume[@]}" "$@"; }
+if price --protocol thesis --threads 2 > "$tmp/q.out" 2>&1 &&
+   grep -qx "Expected: 83.8 core-hours, 41.9 hours on 2 threads; at most 278 core-hours, 139 hours." "$tmp/q.out" &&
+   grep -qE "^prims: main-prim +10 +0.5 +97 +97,000 +13.5 +6.7 +\| +1500 +208 +104$" "$tmp/q.out" &&
+   grep -qE "^generalisation +6 +0.1 +- +117,600 +3.3 +1.6 +\| +- +3.3 +1.6$" "$tmp/q.out" &&
+   price --protocol thesis --threads 64 > "$tmp/q64.out" &&
+   grep -qx "Expected: 83.8 core-hours, 1.7 hours on 64 threads; at most 278 core-hours, 5.6 hours." "$tmp/q64.out" &&
+   price --protocol chain --threads 2 > "$tmp/qc.out" &&
+   grep -qE "^chain +10 +1 +1500 +1,500,000 +417 +208 +\| +1500 +417 +208$" "$tmp/qc.out" &&
+   [ ! -e "$tmp/q/cost/costs.csv" ]; then
+  ok "cost: the arithmetic (costs given, numbers by hand; 2 and 64 threads, PROTOCOL=chain)"
+else ko "cost arithmetic" "$(cat "$tmp/q.out" "$tmp/q64.out" "$tmp/qc.out" 2> /dev/null)"; fi
+# refused: a population that is not there, arguments it cannot price, a bad RUNS
+$COST cost OUT="$tmp/p" COST_PRIM_POP=nowhere.genome > /dev/null 2> "$tmp/e"
+if [ $? != 0 ] && grep -q "nowhere.genome (COST_PRIM_POP): no such file" "$tmp/e"; then
+  ok "cost: a missing population is refused"; else ko "cost, missing population" "$(cat "$tmp/e")"; fi
+$COST cost OUT="$tmp/p" PRIM_ARGS="--threads 3" > /dev/null 2> "$tmp/e"
+if [ $? != 0 ] && grep -q "PRIM_ARGS: '--threads 3' cannot be priced" "$tmp/e"; then
+  ok "cost: step arguments it cannot price are refused"; else ko "cost, bad PRIM_ARGS" "$(cat "$tmp/e")"; fi
+$COST cost OUT="$tmp/p" RUNS=two > /dev/null 2> "$tmp/e"
+if [ $? != 0 ] && grep -q "RUNS=two: expected an integer >= 1" "$tmp/e"; then
+  ok "cost: a bad RUNS is refused"; else ko "cost, RUNS=two" "$(cat "$tmp/e")"; fi
+$COST cost OUT="$tmp/p" PRESET=huge > /dev/null 2> "$tmp/e"
+if [ $? != 0 ] && grep -q "PRESET=huge: expected full, small or tiny" "$tmp/e"; then
+  ok "cost: an unknown preset is refused"; else ko "cost, unknown preset" "$(cat "$tmp/e")"; fi
 
 # refusals
 $REP OUT="$tmp/c" PRESET=huge > /dev/null 2> "$tmp/e"

@@ -5,6 +5,7 @@
 #
 #   make replicate [PRESET=small] [RUNS=N] [OUT=DIR] [THREADS=N]      (top-level Makefile)
 #   make -f tools/replicate.mk [target] [the same variables]
+#   make -f tools/replicate.mk cost [the same variables] [REMEASURE=1]  what it will cost
 #
 # Steps and their files (under OUT):
 #   prims       prims-s<N>/population.genome       configs/prims.cfg, seeds 1..RUNS
@@ -19,6 +20,10 @@
 #   stats       stats/*.txt, *.csv                 ./apps/stats: Tables 3.1-3.3, descriptions
 #   figures     figures/*.png, *.svg               tools/fig_*.py
 #   report      report.md                          tools/replicate_report.py: ours beside the thesis
+#   cost        (printed; OUT/cost/costs.csv)      tools/replicate_cost.py: each step's core-hours
+#                                                  and wall hours on THREADS, from what one
+#                                                  evaluation costs here (build/eval_cost);
+#                                                  `make replicate` prints it before the first job
 #
 # PRESET=small is a quick look (2 runs, capped generations, reduced post-evaluations): it shows
 # every step working in well under an hour, not the thesis's results.
@@ -92,7 +97,8 @@ STATS_OUT := $(OUT)/stats/table_3_1.txt $(OUT)/stats/table_3_2.txt $(OUT)/stats/
   $(OUT)/stats/selftalk.csv
 REPORT := $(OUT)/report.md
 
-.PHONY: FORCE all prims chain integration integrated robustness generalisation stats figures report jobs
+.PHONY: FORCE all prims chain integration integrated robustness generalisation stats figures report jobs \
+  cost
 .DELETE_ON_ERROR:
 # a step's files stay when a later step fails: they are results
 .SECONDARY:
@@ -115,6 +121,25 @@ report: $(REPORT)
 # the targets of one step, one per line: a cluster job array runs line $TASK_ID
 jobs:
 	@$(if $(filter prims,$(STEP)),printf '%s\n' $(PRIM_POPS),$(if $(filter chain,$(STEP)),printf '%s\n' $(CHAIN_POPS),$(if $(filter integrated,$(STEP)),printf '%s\n' $(INT_POPS),$(if $(filter robustness,$(STEP)),printf '%s\n' $(POST_ROB),$(if $(filter generalisation,$(STEP)),printf '%s\n' $(POST_GEN),echo "jobs: STEP=prims, chain, integrated, robustness or generalisation" >&2; exit 2)))))
+
+# ---- the cost, before anything runs (tools/replicate_cost.py; docs/PROTOCOL.md, "Speed"): what
+# one evaluation of each kind costs on this machine (build/eval_cost on COST_SAMPLE genotypes of
+# the committed runs below, CPU time on one thread; measured once per host and build, cached in
+# OUT/cost/costs.csv; REMEASURE=1 measures again), times the evaluations of each step's jobs
+EVAL_COST ?= build/eval_cost
+COST_SAMPLE ?= 4
+COST_PRIM_POP ?= data/evolved/prims_s2/population.genome
+COST_CHAIN_POP ?= data/evolved/chain_candidates/hcg_p2_from50/checkpoint
+# % is the condition (stct, st, ct, ni)
+COST_INT_POP ?= data/evolved/int_%_s1/population.genome
+REMEASURE ?=
+cost:
+	@$(PYTHON) tools/replicate_cost.py --preset=$(PRESET) --protocol=$(PROTOCOL) --runs=$(RUNS) \
+	  --threads=$(THREADS) --out=$(OUT) --eval-cost=$(EVAL_COST) --sample=$(COST_SAMPLE) \
+	  --prim-pop=$(COST_PRIM_POP) --chain-pop=$(COST_CHAIN_POP) --int-pop=$(COST_INT_POP) \
+	  --prim-args='$(PRIM_ARGS)' --chain-args='$(CHAIN_ARGS)' --int-args='$(INT_ARGS)' \
+	  --integ-args='$(INTEG_ARGS)' --rob-args='$(ROB_ARGS)' --gen-args='$(GEN_ARGS)' \
+	  $(if $(filter-out 0 no,$(REMEASURE)),--remeasure)
 
 # ---- evolution: --resume continues a killed run to the identical files (or starts it). It
 # runs every time (FORCE): evolve writes population.genome before its last checkpoint, so a run
