@@ -184,22 +184,23 @@ else
   ko "tools/csvschema.py differs from the library's tables: regenerate it with $gen > tools/csvschema.py" \
     "$(diff "$t/csvschema.py" tools/csvschema.py | head -20)"
 fi
-# its fitness.csv layouts are the headers evolve wrote in every committed run
-if out=$(python3 - data/evolved/*/fitness.csv data/evolved/*/*/fitness.csv data/evolved/*.fitness.csv <<'PY'
-import re, sys
+# its fitness.csv layouts are the library's (st_fitness_csv), primitive and integrated, with and
+# without hand-over and chained trials
+if out=$(python3 - "$gen" <<'PY'
+import subprocess, sys
 sys.path.insert(0, "tools")
 import csvschema
 bad = []
-for path in sys.argv[1:]:
-    h = open(path).readline().rstrip("\n").split(",")
-    n = lambda fam: sum(1 for c in h if re.fullmatch(fam.replace("%d", r"\d+"), c))
-    want = csvschema.fitness_columns("best_F_int" in h, n("best_t%d"), "best_handovers" in h, n("best_c%d"))
-    if want != h:
-        bad.append(path)
-print("%d runs" % len(sys.argv[1:]), *bad)
-sys.exit(1 if bad or len(sys.argv) < 10 else 0)
+layouts = [(i, t, h, c) for i in (0, 1) for t in (0, 1, 8, 16, 32) for h in (0, 1) for c in (0, 1, 8)]
+for i, t, h, c in layouts:
+    lib = subprocess.run([sys.argv[1], "--fitness-header", str(i), str(t), str(h), str(c)],
+                         capture_output=True, text=True, check=True).stdout.rstrip("\n").split(",")
+    if csvschema.fitness_columns(i, t, h, c) != lib:
+        bad.append("%s" % ((i, t, h, c),))
+print("%d layouts" % len(layouts), *bad)
+sys.exit(1 if bad else 0)
 PY
-); then ok "csvschema.fitness_columns: the headers of the committed runs ($out)"; else ko "csvschema fitness layouts" "$out"; fi
+); then ok "csvschema.fitness_columns: the library's layouts ($out)"; else ko "csvschema fitness layouts" "$out"; fi
 # every tool that reads a results file takes its column names from csvschema.pick, and every
 # name it picks is one of the library's: a column renamed or dropped in C fails here
 if out=$(python3 - tools/*.py <<'PY'
