@@ -157,7 +157,9 @@ static void first_line(const char *path, char *buf, size_t n) {
   fclose(f);
 }
 
-/* every layout's header as evolve wrote it in the committed runs */
+/* every layout's header as evolve wrote it in the committed runs. With test_fitness_csv_rows, a
+ * pin of the format (as tests/golden/golden.sha256 of evolve's output): a column added to the
+ * table changes them, on purpose */
 static void test_fitness_csv_layouts(void) {
   static const struct {
     stFitnessLayout l;
