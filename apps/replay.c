@@ -203,8 +203,6 @@ static void on_step(void *ctx, const stTraceStep *s) {
   if (c->csv.f) st_trace_csv_row(&c->csv, s);
 }
 
-static const char *const ENDS[] = {"full", "success", "failure", "quiet"};
-
 /* the page's title: what main put there (the genotype), then what the trial is */
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))
@@ -257,11 +255,11 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
   snprintf(trace->line, sizeof trace->line, "trial %d %s %s k=%d success=%d steps=%ld/%d end=%s "
            "first_success_step=%d sum_S=%.6f sum_P=%.6f F_contribution=%.6f%s", trial,
            st_stage_name(stage), st_primitive_name(t.primitive), t.k, r.success, r.steps_run,
-           t.steps, ENDS[r.end], r.success_step, r.sum_s, r.sum_p, share, ho);
+           t.steps, st_trial_end_name((stTrialEnd)r.end), r.success_step, r.sum_s, r.sum_p, share, ho);
   printf("%s\n", trace->line);
   page_summary(trace, "%s trial %d (%s, posture %d)", st_stage_name(stage), trial,
                st_primitive_name(t.primitive), t.k);
-  trace->sum = (trialPageSummary){trace->title, trace->line, r.success, ENDS[r.end], 1,
+  trace->sum = (trialPageSummary){trace->title, trace->line, r.success, st_trial_end_name((stTrialEnd)r.end), 1,
                                   r.success ? p->fitness.bonus : 0.0, r.steps_run, t.steps};
 }
 
@@ -291,7 +289,7 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
                          "focus_bonus=%d move_bonus=%d bonus=%.17g points=%.17g", trial,
                          trial % ST_NPOSTURE, st_word_source_name(plan.words),
                          st_int_fitness_name(plan.fitness), r.success, r.steps_run, r.steps,
-                         ENDS[r.end], r.reached_step, r.sum_s, r.sum_p, r.focus_bonus, r.success,
+                         st_trial_end_name((stTrialEnd)r.end), r.reached_step, r.sum_s, r.sum_p, r.focus_bonus, r.success,
                          bonus, st_int_trial_points(&r));
   if (plan.fitness == ST_FIT_PREDICTION && n > 0 && (size_t)n < lz)
     snprintf(ln + n, lz - (size_t)n, " reached=%d F_step=%.17g F_switch=%.17g B_pred=%.17g",
@@ -299,7 +297,7 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
   printf("%s\n", ln);
   page_summary(trace, "integrated trial %d (posture %d, words: %s)", trial, trial % ST_NPOSTURE,
                st_word_source_name(plan.words));
-  trace->sum = (trialPageSummary){trace->title, ln, r.success, ENDS[r.end], 1, bonus,
+  trace->sum = (trialPageSummary){trace->title, ln, r.success, st_trial_end_name((stTrialEnd)r.end), 1, bonus,
                                   r.steps_run, r.steps};
 }
 
@@ -330,12 +328,12 @@ static void replay_posteval(const stProtocol *p, stPostTest test, int caretaker,
            "repetition=%d words=%s heard=%s success=%d reached_step=%d steps=%d/%d end=%s "
            "open_jumped=%d", trial, st_post_test_name(test), t.type, t.cell, t.posture,
            t.repetition, st_word_source_name(words), r.heard, r.success, r.reached_step,
-           r.steps_run, t.steps, ENDS[r.end], r.open_jumped);
+           r.steps_run, t.steps, st_trial_end_name((stTrialEnd)r.end), r.open_jumped);
   printf("%s\n", trace->line);
   page_summary(trace, "%s test trial %d (posture %d, words: %s)", st_post_test_name(test), trial,
                t.posture, st_word_source_name(words));
   /* a post-evaluation trial succeeds or not: it earns no bonus */
-  trace->sum = (trialPageSummary){trace->title, trace->line, r.success, ENDS[r.end], 0, 0.0,
+  trace->sum = (trialPageSummary){trace->title, trace->line, r.success, st_trial_end_name((stTrialEnd)r.end), 0, 0.0,
                                   r.steps_run, t.steps};
 }
 

@@ -27,6 +27,8 @@ done
 check_files() {
   python3 - "$@" <<'PY'
 import csv, math, sys
+sys.path.insert(0, "tools")
+import csvschema  # the library's columns (tools/csvschema.c)
 test, d, words, cond, nind = sys.argv[1:6]
 excluded = sys.argv[6] if len(sys.argv) > 6 else None
 rows = list(csv.DictReader(open(d + "/trials.csv")))
@@ -41,12 +43,8 @@ for line in open(d + "/config.ini"):
 bad = []
 def need(ok, what):
     if not ok: bad.append(what)
-need(list(rows[0].keys()) == ("test,condition,run,individual,trial,type,cell,posture,repetition,"
-     "words,success,reached_step,open_jumped,run_label,heard,end,steps_run,obj_x,obj_y,target_x,"
-     "target_y,target_z").split(",") if rows else True, "trials.csv header")
-need(list(summ[0].keys()) == ("test,condition,run,individual,successes,trials,excluded,"
-     "open_jumped,run_label,success_rate,mean_steps_to_target,unstable,generation").split(","),
-     "summary header")
+need(list(rows[0].keys()) == list(csvschema.TRIALS) if rows else True, "trials.csv header")
+need(list(summ[0].keys()) == list(csvschema.SUMMARY), "summary header")
 need(len(summ) == int(nind), "%d summary rows (expected %s)" % (len(summ), nind))
 P = [(0.40, 0.10), (0.20, 0.10), (0.30, 0.20), (0.30, 0.00)]
 T = [(0.25, 0.10, 0.17), (0.25, -0.10, 0.17)]

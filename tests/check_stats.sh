@@ -242,8 +242,10 @@ fails "trials: a row that is not its trial's" "$tmp/t10:3: trial 41 with type -1
 # in order, and each individual alone gives its own row
 python3 - "$tmp/many.csv" "$tmp/many_shuf.csv" "$tmp/one.csv" <<'PY'
 import random, sys
+sys.path.insert(0, "tools")
+import csvschema
 rng = random.Random(24)
-head = "test,condition,run,individual,trial,type,cell,posture,repetition,words,success,reached_step,open_jumped"
+head = ",".join(list(csvschema.TRIALS)[:csvschema.TRIALS_READ])
 rows = []
 for run in range(60):
     for ind in range(10):

@@ -7,15 +7,18 @@ CHECK=check_tools
 source "$(dirname "$0")/check_lib.sh"
 t=$tmp
 
+# the header of a run's fitness.csv (tools/csvschema.py, from the library's table)
+fitness_header() { # INTEGRATED TRIALS
+  python3 -c 'import sys; sys.path.insert(0, "tools"); import csvschema
+print(",".join(csvschema.fitness_columns(int(sys.argv[1]), int(sys.argv[2]))))' "$1" "$2"
+}
+
 # run a: simple-prim completes at generation 2 (first row with all_success >= 5), main-prim at 5
 mk() { # DIR then rows "gen stage all_success best trials16"
   local d=$1; shift
   mkdir -p "$d"
   {
-    printf 'generation,best,mean,worst,best_bonus,stage,stage_generation,all_success,best_successes'
-    printf ',best_F_reach,best_F_open,best_F_grasp,best_F_move'
-    for k in $(seq 0 15); do printf ',best_t%d' "$k"; done
-    echo
+    fitness_header 0 16 # a primitive run's
     while [ $# -gt 0 ]; do
       read -r g st all best tr <<<"$1"
       printf '%s,%s,%s,0,0,%s,0,%s,0,1,2,3,4' "$g" "$best" "$best" "$st" "$all"
@@ -172,5 +175,63 @@ else
 fi
 python3 tools/screen_report.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
 [ $rc = 1 ] && grep -q "screen_report: $t/nope/fitness.csv" "$t/err" && ok "screen_report: a missing screen named" || ko "screen_report missing rc=$rc $(cat "$t/err")"
+# ---- tools/csvschema.py: the library's column tables as the tools take them
+# generated from the C tables: the committed file is what tools/csvschema.c prints
+gen="${BUILD:-build}/csvschema"
+if "$gen" > "$t/csvschema.py" && cmp -s "$t/csvschema.py" tools/csvschema.py; then
+  ok "tools/csvschema.py is what the library's tables give ($gen)"
+else
+  ko "tools/csvschema.py differs from the library's tables: regenerate it with $gen > tools/csvschema.py" \
+    "$(diff "$t/csvschema.py" tools/csvschema.py | head -20)"
+fi
+# its fitness.csv layouts are the library's (st_fitness_csv), primitive and integrated, with and
+# without hand-over and chained trials
+if out=$(python3 - "$gen" <<'PY'
+import subprocess, sys
+sys.path.insert(0, "tools")
+import csvschema
+bad = []
+layouts = [(i, t, h, c) for i in (0, 1) for t in (0, 1, 8, 16, 32) for h in (0, 1) for c in (0, 1, 8)]
+for i, t, h, c in layouts:
+    lib = subprocess.run([sys.argv[1], "--fitness-header", str(i), str(t), str(h), str(c)],
+                         capture_output=True, text=True, check=True).stdout.rstrip("\n").split(",")
+    if csvschema.fitness_columns(i, t, h, c) != lib:
+        bad.append("%s" % ((i, t, h, c),))
+print("%d layouts" % len(layouts), *bad)
+sys.exit(1 if bad else 0)
+PY
+); then ok "csvschema.fitness_columns: the library's layouts ($out)"; else ko "csvschema fitness layouts" "$out"; fi
+# every tool that reads a results file takes its column names from csvschema.pick, and every
+# name it picks is one of the library's: a column renamed or dropped in C fails here
+if out=$(python3 - tools/*.py <<'PY'
+import ast, sys
+sys.path.insert(0, "tools")
+import csvschema
+bad, seen = [], 0
+for path in sys.argv[1:]:
+    if path.endswith("csvschema.py"):
+        continue
+    src = open(path).read()
+    tree = ast.parse(src)
+    picks = [n for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+             and n.func.attr == "pick" and getattr(n.func.value, "id", "") == "csvschema"]
+    reads = any(f in src for f in ("fitness.csv", "summary.csv", "trials.csv"))
+    if reads and not picks:
+        bad.append(path + ": names a results file but takes no column from csvschema.pick")
+    for call in picks:
+        seen += 1
+        table = getattr(csvschema, call.args[0].attr)
+        for a in call.args[1:]:
+            if isinstance(a, ast.Starred):  # a generated list of names: evaluated as the tool does
+                names = list(eval(compile(ast.Expression(a.value), path, "eval"), {"PRIMS": ["reach", "open", "grasp", "move"]}))
+            else:
+                names = [a.value]
+            bad += ["%s:%d: '%s' is no column of %s" % (path, call.lineno, n, call.args[0].attr)
+                    for n in names if n not in table]
+print("%d picks" % seen, *bad)
+sys.exit(1 if bad or seen < 10 else 0)
+PY
+); then ok "tools: every column name picked is the library's ($out)"; else ko "tools' column names" "$out"; fi
+
 echo "check_tools: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -11,6 +11,8 @@
 #include <string.h>
 
 #include "posteval/journal.h"
+#include "selftalk/fitnesscsv.h"
+#include "selftalk/postcsv.h"
 #include "selftalk/posteval.h"
 #include "selftalk/scripted.h"
 #include "test_util.h"
@@ -374,9 +376,11 @@ static void fake_run(const char *dir, const char *cfg_path, const char *row1) {
   CU_ASSERT_EQUAL(st_genome_set_save(path, g, 2, NULL, gen, err, sizeof err), ST_OK);
   snprintf(path, sizeof path, "%s/fitness.csv", dir);
   f = fopen(path, "w");
-  fprintf(f, "generation,best,mean,worst,best_F_int,best_F_pred,best_bonus,best_bonus_auto,"
-             "best_successes,best_t0,best_t1,best_t2,best_t3,best_t4,best_t5,best_t6,best_t7\n"
-             "0,1,1,1,1,0,10,0,8,1,1,1,1,1,1,1,1\n%s\n", row1);
+  stFitnessCsv csv; /* an integrated run of 8 trials: evolve's columns */
+  const stFitnessLayout layout = {1, 8, 0, 0};
+  st_fitness_csv(&layout, &csv);
+  st_csv_write_header(f, &csv.schema);
+  fprintf(f, "0,1,1,1,1,0,10,0,8,1,1,1,1,1,1,1,1\n%s\n", row1);
   fclose(f);
 }
 

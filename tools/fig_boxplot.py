@@ -17,11 +17,12 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
 import figlib  # noqa: E402
 
 figlib.PROG = "fig_boxplot"
-COLUMNS = {"test": "str", "condition": "str", "run": "int", "individual": "int", "successes": "int",
-           "trials": "int"}
+COLUMNS = csvschema.pick(csvschema.SUMMARY, "test", "condition", "run", "individual", "successes",
+                         "trials")
 DEFAULT = {"robustness": "fig3_4", "generalisation": "fig3_9"}
 
 

@@ -19,10 +19,11 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
 import figlib  # noqa: E402
 
 figlib.PROG = "fig_int_fitness"
-COLUMNS = {"generation": "int", "best": "float", "best_bonus": "float", "best_bonus_auto": "float"}
+COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "best", "best_bonus", "best_bonus_auto")
 COLOURS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf"]
 
 

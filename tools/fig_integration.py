@@ -21,11 +21,12 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
 import figlib  # noqa: E402
 
 figlib.PROG = "fig_integration"
-COLUMNS = {"test": "str", "condition": "str", "run": "int", "individual": "int", "successes": "int",
-           "trials": "int", "excluded": "int", "open_jumped": "int"}
+COLUMNS = csvschema.pick(csvschema.SUMMARY, "test", "condition", "run", "individual", "successes",
+                         "trials", "excluded", "open_jumped")
 TEST = "integration"
 COLOURS = ["#4c72b0", "#dd8452", "#55a868", "#c44e52", "#8172b3", "#937860"]
 

@@ -16,11 +16,12 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
 import figlib  # noqa: E402
 
 figlib.PROG = "fig_prim_fitness"
-COLUMNS = {"generation": "int", "best": "float", "mean": "float", "best_bonus": "float",
-           "stage": "str"}
+COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "best", "mean", "best_bonus", "stage")
+TRIAL = next(iter(csvschema.pick(csvschema.FITNESS, "best_t%d")))  # one column per trial
 
 
 def config_bonus(run_dir):
@@ -45,7 +46,7 @@ def config_bonus(run_dir):
 def load(arg):
     path = arg if arg.endswith(".csv") and not os.path.isdir(arg) else os.path.join(arg, "fitness.csv")
     rows = figlib.read_csv(path, COLUMNS, "a primitive run's fitness.csv")
-    ntrials = sum(1 for k in rows[0] if k.startswith("best_t"))
+    ntrials = sum(1 for t in range(len(rows[0])) if TRIAL % t in rows[0])
     return {"path": path, "rows": rows, "max_bonus": config_bonus(os.path.dirname(path)) * ntrials,
             "changes": [r["generation"] for a, r in zip(rows, rows[1:]) if r["stage"] != a["stage"]]}
 

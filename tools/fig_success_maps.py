@@ -22,11 +22,11 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
 import figlib  # noqa: E402
 
 figlib.PROG = "fig_success_maps"
-COLUMNS = {"test": "str", "condition": "str", "run": "int", "individual": "int", "cell": "int",
-           "success": "int"}
+COLUMNS = csvschema.pick(csvschema.TRIALS, "test", "condition", "run", "individual", "cell", "success")
 N = 7
 
 

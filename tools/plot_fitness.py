@@ -17,7 +17,13 @@ import csv
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
+
 PRIMS = ["reach", "open", "grasp", "move"]
+# the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
+COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "best", "mean", "stage", "best_t%d",
+                         *("best_F_" + p for p in PRIMS))
 COLOURS = {"best": "#1f77b4", "mean": "#ff7f0e", "reach": "#2ca02c", "open": "#9467bd",
            "grasp": "#d62728", "move": "#8c564b"}
 

@@ -15,6 +15,14 @@ import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import csvschema  # noqa: E402
+
+# the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
+FITNESS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success", "best",
+                         "best_bonus", "best_bonus_auto", "best_successes", "best_t%d")
+SUMMARY = csvschema.pick(csvschema.SUMMARY, "condition", "run", "individual", "successes", "trials",
+                         "open_jumped")
 THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
 CONDS = [("stct", "ST-CT"), ("st", "ST"), ("ct", "CT"), ("ni", "NI")]
 

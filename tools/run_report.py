@@ -16,11 +16,14 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
 import plot_fitness  # noqa: E402
 from plot_fitness import PRIMS, read as read_fitness  # noqa: E402
 from runs_summary import success_genotypes  # noqa: E402
 
 plot_fitness.PROG = "run_report"
+# the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
+COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "best", "stage", "all_success", "best_t%d")
 
 FILES = [  # (name, what it holds)
     ("config.ini", "the resolved configuration, every key (./apps/evolve DIR/config.ini --out NEW reruns it)"),

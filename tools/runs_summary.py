@@ -8,8 +8,16 @@ generations, the thesis's summary statistics (§3.1).
     python3 tools/runs_summary.py runs/simple_prim-s1 runs/simple_prim-s2 ...
 """
 import csv
+import os
 import statistics
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
+
+# the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
+COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success", "best",
+                         "best_successes", "best_t%d")
 
 
 def success_genotypes(run_dir):

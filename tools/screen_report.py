@@ -14,6 +14,14 @@ import re
 import statistics
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
+
+# the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
+SUMMARY = csvschema.pick(csvschema.SUMMARY, "successes")
+TRIALS = csvschema.pick(csvschema.TRIALS, "heard", "open_jumped")
+FITNESS = csvschema.pick(csvschema.FITNESS, "best_t%d", "best_h%d", "best_F_chain", "best_c%d")
+
 
 def die(msg):
     sys.exit("screen_report: " + msg)

@@ -173,6 +173,10 @@ typedef enum stTrialEnd {
   ST_END_QUIET      /* main-prim grasp: object fell after the table was removed: nothing after */
 } stTrialEnd;
 
+/* "full", "success", "failure", "quiet" (posteval's trials.csv, replay's lines); "?" for
+ * anything else. */
+const char *st_trial_end_name(stTrialEnd end);
+
 /* step() fills S, P and success_now of the record and returns the stTrialEnd that ends the
  * episode at this step, or -1 to go on; end() sees the final state. */
 typedef struct stScorer {

@@ -6,9 +6,8 @@
  *
  * Files in the output directory:
  *   config.ini         the resolved configuration (written once)
- *   fitness.csv        one row per generation: generation,best,mean,worst,best_bonus,stage,...
- *                      (integrated: generation,best,mean,worst,best_F_int,best_F_pred,
- *                      best_bonus,best_bonus_auto,best_successes,best_t0,...)
+ *   fitness.csv        one row per generation: its fitness, the best's evaluation and the
+ *                      trials it solved (the columns: selftalk/fitnesscsv.h)
  *   best.genome        the best genotype of every generation, appended (SPEC §4 format)
  *   population.genome  the final population, best first, with fitness (at the end)
  *   checkpoint         the state after the last finished generation, rewritten atomically

@@ -20,7 +20,8 @@
  * the individual and the trial (not on threads, nor on which individuals run together).
  *
  * Files (st_post_run): trials.csv, one row per trial run; summary.csv, one row per individual;
- * config.ini, the resolved configuration. Columns: docs/PROTOCOL.md, "Post-evaluation". */
+ * config.ini, the resolved configuration. Columns: selftalk/postcsv.h (docs/PROTOCOL.md,
+ * "Post-evaluation files"). */
 #ifndef SELFTALK_POSTEVAL_H
 #define SELFTALK_POSTEVAL_H
 
@@ -215,15 +216,7 @@ typedef struct stPostLabels {
   stWordSource words;
 } stPostLabels;
 
-/* trials.csv: a header, then one row per trial run, individual by individual in order, trial
- * by trial; r[i * ntrials + t] is individual i's trial t; excluded individuals have no rows.
- * Returns 0, or -1 on a write error. */
-int st_post_write_trials(FILE *f, const stPostLabels *labels, const stPostIndividual *ind,
-                         int nind, const stPostTrial *trials, int ntrials, const stPostResult *r);
-
-/* summary.csv: a header, then one row per individual (st_post_summarise of its results). */
-int st_post_write_summary(FILE *f, const stPostLabels *labels, const stPostIndividual *ind,
-                          int nind, int ntrials, const stPostResult *r);
+/* The files' writers and readers: selftalk/postcsv.h. */
 
 /* ---- a whole test ---- */
 

@@ -75,6 +75,13 @@ typedef struct stQuartiles {
  * n < 1, ST_ERR_RANGE on a non-finite value, ST_ERR_NOMEM. */
 stStatus st_quartiles(const double *x, int n, stQuartiles *q, char *err, size_t errsz);
 
+/* A file of one number per line (./apps/stats mwu, quartiles): lines are trimmed, blank lines
+ * and lines starting with '#' skipped; each other line one finite number. *x (freed with
+ * free()) holds the *n >= 1 numbers in file order. Read through the bounded reader (at most
+ * ST_FILE_MAX bytes, no NUL byte). ST_ERR_IO, ST_ERR_PARSE ("FILE:LINE: 'x' is not a number
+ * (expected one number per line)", "FILE: no numbers ..."), ST_ERR_NOMEM. */
+stStatus st_numbers_read(const char *path, double **x, int *n, char *err, size_t errsz);
+
 #ifdef __cplusplus
 }
 #endif

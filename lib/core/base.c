@@ -195,6 +195,30 @@ stStatus st_text_read(const char *path, size_t max, char **text, size_t *len, ch
   return st;
 }
 
+stStatus st__text_parse(const char *name, const char *text, size_t len, stTextParse parse,
+                        void *ctx, char *err, size_t errsz) {
+  stStatus st = st_text_check(name, text, len, err, errsz);
+  if (st) return st;
+  char *copy = malloc(len + 1);
+  if (!copy) return st__errf(err, errsz, "%s: out of memory", name), ST_ERR_NOMEM;
+  if (len) memcpy(copy, text, len);
+  copy[len] = 0;
+  st = parse(name, copy, len, ctx, err, errsz);
+  free(copy);
+  return st;
+}
+
+stStatus st__text_read_parse(const char *path, stTextParse parse, void *ctx, char *err,
+                             size_t errsz) {
+  char *text;
+  size_t len;
+  stStatus st = st_text_read(path, ST_FILE_MAX, &text, &len, err, errsz);
+  if (st) return st;
+  st = parse(path, text, len, ctx, err, errsz);
+  free(text);
+  return st;
+}
+
 stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t errsz) {
   memset(af, 0, sizeof *af);
   if (strlen(path) + 32 >= sizeof af->tmp) {

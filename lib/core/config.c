@@ -825,14 +825,13 @@ stStatus st__config_parse(const char *name, const char *text, size_t len, stConf
   return L.status;
 }
 
+static stStatus parse_cb(const char *name, char *text, size_t len, void *cfg, char *err,
+                         size_t errsz) {
+  return st__config_parse(name, text, len, cfg, err, errsz);
+}
+
 stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz) {
-  char *text;
-  size_t len;
-  stStatus st = st_file_read(path, ST_FILE_MAX, &text, &len, err, errsz);
-  if (st) return st;
-  st = st__config_parse(path, text, len, cfg, err, errsz);
-  free(text);
-  return st;
+  return st__text_read_parse(path, parse_cb, cfg, err, errsz);
 }
 
 static stStatus set_one(stConfig *cfg, const char *assignment, int cross, char *err, size_t errsz) {

@@ -5,6 +5,8 @@
 
 #include <stddef.h>
 
+#include "selftalk/base.h"
+
 #if defined(__GNUC__)
 #define ST_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
@@ -54,5 +56,34 @@ size_t st__strlcpy(char *dst, const char *src, size_t n);
  * *len its length without the newline, *newline (nullable) 1 when a newline ends it. Moves *p
  * past it. Returns 0 at the end of the text, 1 otherwise. */
 int st__text_line(const char **p, const char *end, const char **line, size_t *len, int *newline);
+
+/* A text file's reader: st_text_read (at most ST_FILE_MAX bytes, no NUL byte), then
+ * parse(path, text, len, ctx, ...) on the text, which it may change in place; the text is freed
+ * after. Returns the first failure. */
+typedef stStatus (*stTextParse)(const char *name, char *text, size_t len, void *ctx, char *err,
+                                size_t errsz);
+stStatus st__text_read_parse(const char *path, stTextParse parse, void *ctx, char *err,
+                             size_t errsz);
+
+/* The same for a text in memory (the readers' in-memory entry points, lib/core/readers.h):
+ * st_text_check, then parse on a NUL-terminated copy. */
+stStatus st__text_parse(const char *name, const char *text, size_t len, stTextParse parse,
+                        void *ctx, char *err, size_t errsz);
+
+/* A text read whole (NUL-terminated at len), line by line in place: the line-oriented readers
+ * of the results files (lib/core/csv.c) and of number files (lib/core/stats.c). lineno counts
+ * every line read. */
+typedef struct stLines {
+  char *text;
+  size_t len, pos;
+  int lineno;
+} stLines;
+
+/* The next line without its newline and surrounding white space (NUL-terminated in the text);
+ * NULL at the end of the text. */
+char *st__lines_next(stLines *t);
+
+/* The next line that is neither blank nor a '#' comment, as st__lines_next; NULL at the end. */
+char *st__lines_content(stLines *t);
 
 #endif

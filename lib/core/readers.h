@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "selftalk/config.h"
+#include "selftalk/csv.h"
 #include "selftalk/genome.h"
 
 #ifdef __cplusplus
@@ -24,6 +25,14 @@ stStatus st__config_parse(const char *name, const char *text, size_t len, stConf
 /* st_genome_set_read's parser; first_line is the file line of text's first line (messages). */
 stStatus st__genome_set_parse(const char *name, const char *text, size_t len, int first_line,
                               int expect_genes, stGenomeSet *set, char *err, size_t errsz);
+
+/* st_csv_read's parser: the rows of a results file (ctx: the schema's check's). */
+stStatus st__csv_parse(const char *name, const char *text, size_t len, const stCsvSchema *schema,
+                       const void *ctx, stCsvRows *rows, char *err, size_t errsz);
+
+/* st_numbers_read's parser: *x (freed with free()) and *n >= 1 on success, NULL and 0 else. */
+stStatus st__numbers_parse(const char *name, const char *text, size_t len, double **x, int *n,
+                           char *err, size_t errsz);
 
 #ifdef __cplusplus
 }

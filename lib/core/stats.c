@@ -2,11 +2,14 @@
  * Mann-Whitney U and quantiles (selftalk/stats.h). Core: libm only. */
 #include "selftalk/stats.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/internal.h"
+#include "core/readers.h"
+#include "selftalk/io.h"
 
 stMwuDef st_mwu_default_def(void) {
   stMwuDef d = {20, 0.5};
@@ -178,4 +181,61 @@ stStatus st_quartiles(const double *x, int n, stQuartiles *q, char *err, size_t 
   q->q3 = st_quantile_sorted(s, n, 0.75);
   free(s);
   return ST_OK;
+}
+
+/* ---- files of numbers ---- */
+
+/* the numbers of a text (NUL-terminated at len, ours to change) */
+typedef struct numbers {
+  double *x;
+  int n;
+} numbers;
+
+static stStatus parse_numbers(const char *name, char *text, size_t len, void *ctx, char *err,
+                              size_t errsz) {
+  numbers *out = ctx;
+  stLines t = {text, len, 0, 0};
+  double *x = NULL;
+  int n = 0, cap = 0;
+  stStatus st = ST_OK;
+  for (char *s; !st && (s = st__lines_content(&t));) {
+    char *end;
+    errno = 0;
+    const double v = strtod(s, &end);
+    if (end == s || *end)
+      st = (st__errf(err, errsz, "%s:%d: '%s' is not a number (expected one number per line)",
+                     name, t.lineno, s), ST_ERR_PARSE);
+    else if (!isfinite(v) || errno == ERANGE)
+      st = (st__errf(err, errsz, "%s:%d: '%s' is not finite (expected a finite number)", name,
+                     t.lineno, s), ST_ERR_PARSE);
+    else if (n == cap) {
+      double *y = realloc(x, (size_t)(cap = 2 * cap + 64) * sizeof *x);
+      if (y) x = y;
+      else st = (st__errf(err, errsz, "%s: out of memory", name), ST_ERR_NOMEM);
+    }
+    if (!st) x[n++] = v;
+  }
+  if (!st && !n)
+    st = (st__errf(err, errsz, "%s: no numbers (expected one number per line; blank lines and # "
+                   "comments are skipped)", name), ST_ERR_PARSE);
+  if (st) free(x), x = NULL, n = 0;
+  out->x = x, out->n = n;
+  return st;
+}
+
+stStatus st__numbers_parse(const char *name, const char *text, size_t len, double **x, int *n,
+                           char *err, size_t errsz) {
+  ST_ASSERT(name && (text || len == 0) && x && n);
+  numbers out = {NULL, 0};
+  stStatus st = st__text_parse(name, text, len, parse_numbers, &out, err, errsz);
+  *x = out.x, *n = out.n;
+  return st;
+}
+
+stStatus st_numbers_read(const char *path, double **x, int *n, char *err, size_t errsz) {
+  ST_ASSERT(path && x && n);
+  numbers out = {NULL, 0};
+  stStatus st = st__text_read_parse(path, parse_numbers, &out, err, errsz);
+  *x = out.x, *n = out.n;
+  return st;
 }

@@ -68,6 +68,11 @@ const char *st_word_source_name(stWordSource s) {
   return (int)s >= 0 && s < ST_WORDS_COUNT ? names[s] : "?";
 }
 
+const char *st_trial_end_name(stTrialEnd end) {
+  static const char *const names[] = {"full", "success", "failure", "quiet"};
+  return (int)end >= 0 && end <= ST_END_QUIET ? names[end] : "?";
+}
+
 int st_word_source_given(stWordSource s) {
   return s == ST_WORDS_FIXED || s == ST_WORDS_CARETAKER || s == ST_WORDS_HANDOVER;
 }

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT
- * The post-evaluations' tables, words, conditions, exclusion rule, one trial and the two CSV
- * writers (selftalk/posteval.h). The inputs and the parallel run are in postrun.c. */
+ * The post-evaluations' tables, words, conditions, exclusion rule and one trial
+ * (selftalk/posteval.h). The inputs and the parallel run are in postrun.c, the files' writers
+ * and readers in postcsv.c. */
 #include <math.h>
 #include <string.h>
 
@@ -314,49 +315,4 @@ void st_post_summarise(const stPostResult *r, int n, int excluded, stPostSummary
     if (r[i].success) steps += r[i].reached_step + 1;
   }
   s->mean_steps = s->successes ? steps / s->successes : NAN;
-}
-
-static const char *end_name(int end) {
-  static const char *const names[] = {"full", "success", "failure", "quiet"};
-  return end >= 0 && end <= ST_END_QUIET ? names[end] : "?";
-}
-
-int st_post_write_trials(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
-                         const stPostTrial *t, int ntrials, const stPostResult *r) {
-  ST_ASSERT(f && L && nind >= 0 && ntrials >= 0);
-  ST_ASSERT(nind == 0 || (ind && t && r));
-  fprintf(f, "test,condition,run,individual,trial,type,cell,posture,repetition,words,success,"
-             "reached_step,open_jumped,run_label,heard,end,steps_run,obj_x,obj_y,target_x,"
-             "target_y,target_z\n");
-  for (int i = 0; i < nind; i++) {
-    if (ind[i].excluded) continue;
-    for (int k = 0; k < ntrials; k++) {
-      const stPostResult *x = &r[(size_t)i * (size_t)ntrials + (size_t)k];
-      const stPostTrial *y = &t[k];
-      fprintf(f, "%s,%s,%d,%d,%d,%d,%d,%d,%d,%s,%d,%d,%d,%s,%s,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-              L->test, L->condition, ind[i].run, ind[i].rank, y->index, y->type, y->cell,
-              y->posture, y->repetition, st_word_source_name(L->words), x->success,
-              x->reached_step, x->open_jumped, ind[i].run_label, x->heard, end_name(x->end),
-              x->steps_run, y->obj[0], y->obj[1], y->target_pos[0], y->target_pos[1],
-              y->target_pos[2]);
-    }
-  }
-  return ferror(f) ? -1 : 0;
-}
-
-int st_post_write_summary(FILE *f, const stPostLabels *L, const stPostIndividual *ind, int nind,
-                          int ntrials, const stPostResult *r) {
-  ST_ASSERT(f && L && nind >= 0 && ntrials >= 0);
-  ST_ASSERT(nind == 0 || (ind && r));
-  fprintf(f, "test,condition,run,individual,successes,trials,excluded,open_jumped,run_label,"
-             "success_rate,mean_steps_to_target,unstable,generation\n");
-  for (int i = 0; i < nind; i++) {
-    stPostSummary s;
-    st_post_summarise(&r[(size_t)i * (size_t)ntrials], ntrials, ind[i].excluded, &s);
-    fprintf(f, "%s,%s,%d,%d,%d,%d,%d,%d,%s,%.17g,%.17g,%d,%d\n", L->test, L->condition,
-            ind[i].run, ind[i].rank, s.successes, s.trials, ind[i].excluded, s.open_jumps,
-            ind[i].run_label, (double)s.successes / s.trials, s.mean_steps, s.unstable,
-            ind[i].generation);
-  }
-  return ferror(f) ? -1 : 0;
 }

@@ -14,8 +14,9 @@
 #include "core/internal.h"
 #include "posteval/journal.h"
 #include "selftalk/evolve.h" /* st_thread_count */
+#include "selftalk/fitnesscsv.h"
 #include "selftalk/io.h"
-#include "selftalk/posteval.h"
+#include "selftalk/postcsv.h"
 
 /* ---- inputs ---- */
 
@@ -159,84 +160,6 @@ static stStatus last_best(const char *dir, int ngenes, stGenome *g, int *generat
   return ST_OK;
 }
 
-/* splits a CSV line in place; returns the number of fields (at most max) */
-static int split_csv(char *line, char **field, int max) {
-  int n = 0;
-  line[strcspn(line, "\r\n")] = 0;
-  for (char *p = line; n < max;) {
-    field[n++] = p;
-    p = strchr(p, ',');
-    if (!p) break;
-    *p++ = 0;
-  }
-  return n;
-}
-
-#define MAX_FIELDS 64
-
-/* the columns generation and best_t0.. of an integrated fitness.csv header */
-static int training_columns(char *header, int *gcol, int *tcol) {
-  char *f[MAX_FIELDS];
-  const int n = split_csv(header, f, MAX_FIELDS);
-  int nt = 0;
-  *gcol = -1;
-  for (int i = 0; i < n; i++) {
-    char want[32];
-    snprintf(want, sizeof want, "best_t%d", nt);
-    if (!strcmp(f[i], "generation")) *gcol = i;
-    if (!strcmp(f[i], want) && nt < ST_INT_MAX_TRIALS) tcol[nt++] = i;
-  }
-  return nt;
-}
-
-/* the successes of the best in training generation G: fitness.csv's best_t<i> of G's row
- * (the file through the bounded reader: at most ST_FILE_MAX bytes, no NUL byte) */
-static stStatus training_successes(const char *dir, int generation, uint8_t *success, int *n,
-                                   char *err, size_t errsz) {
-  char path[ST_PATH_MAX];
-  snprintf(path, sizeof path, "%s/fitness.csv", dir);
-  char *text;
-  size_t len;
-  stStatus st = st_text_read(path, ST_FILE_MAX, &text, &len, err, errsz);
-  if (st) return st;
-  int gcol = -1, tcol[ST_INT_MAX_TRIALS], lineno = 0, found = 0;
-  *n = 0;
-  const char *rest = text, *at;
-  size_t n_at;
-  while (!found && !st && st__text_line(&rest, text + len, &at, &n_at, NULL)) {
-    char *line = text + (at - text);
-    line[n_at] = 0; /* our copy: each line a C string (the last one's byte is the final NUL) */
-    if (++lineno == 1) {
-      *n = training_columns(line, &gcol, tcol);
-      if (gcol < 0 || *n == 0) {
-        st = ST_ERR_PARSE;
-        st__errf(err, errsz, "%s:1: no generation and best_t0 columns (expected the "
-                 "fitness.csv of an integrated run)", path);
-      }
-      continue;
-    }
-    char *fld[MAX_FIELDS];
-    const int nf = split_csv(line, fld, MAX_FIELDS);
-    int g;
-    if (nf <= tcol[*n - 1] || nf <= gcol || st__parse_int(fld[gcol], &g)) {
-      st = ST_ERR_PARSE;
-      st__errf(err, errsz, "%s:%d: %d fields or generation '%s' (expected a row of the header's "
-               "columns)", path, lineno, nf, nf > gcol ? fld[gcol] : "");
-      break;
-    }
-    if (g != generation) continue;
-    found = 1;
-    for (int i = 0; i < *n; i++) success[i] = (uint8_t)(strcmp(fld[tcol[i]], "0") != 0);
-  }
-  free(text);
-  if (!st && !found) {
-    st = ST_ERR_PARSE;
-    st__errf(err, errsz, "%s: no row for generation %d, the last of best.genome (expected the "
-             "run's own fitness.csv)", path, generation);
-  }
-  return st;
-}
-
 stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
                           stPostIndividual *out, char *err, size_t errsz) {
   if (!is_dir(dir))
@@ -248,11 +171,12 @@ stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
   if (!st) st = last_best(dir, st_arch_ngenes((stNetArch)cfg->network_arch), &g, &generation, err, errsz);
   uint8_t success[ST_INT_MAX_TRIALS];
   int n = 0;
-  if (!st) st = training_successes(dir, generation, success, &n, err, errsz);
+  char path[ST_PATH_MAX];
+  snprintf(path, sizeof path, "%s/fitness.csv", dir);
+  if (!st) st = st_fitness_csv_successes(path, generation, success, ST_INT_MAX_TRIALS, &n, err, errsz);
   if (st) return st;
   char label[128];
   st_post_run_label(dir, label, sizeof label);
-  char path[ST_PATH_MAX];
   snprintf(path, sizeof path, "%s/best.genome", dir);
   individual_init(out, label, path, 0, generation);
   out->genome = g;
@@ -405,7 +329,8 @@ static stStatus prepare(postRun *R, char *err, size_t errsz) {
   return ST_OK;
 }
 
-/* DIR's files: the three written at the end (write_files), then the journal */
+/* DIR's files: the three written at the end (write_files), then the journal; the CSVs' names
+ * are their schemas' (selftalk/postcsv.h) */
 static const char *const g_out_names[] = {"config.ini", "trials.csv", "summary.csv",
                                           ST_POST_JOURNAL};
 #define N_RESULT_FILES 3
@@ -539,7 +464,7 @@ static stStatus write_file(const char *dir, const char *name, const postRun *R, 
   if (st) return st;
   int rc;
   if (!strcmp(name, "config.ini")) rc = st_config_write(af.f, R->cfg);
-  else if (!strcmp(name, "trials.csv"))
+  else if (!strcmp(name, st_post_trials_schema()->file))
     rc = st_post_write_trials(af.f, &R->labels, R->ind, R->nind, R->trials, R->pd.trials, R->res);
   else rc = st_post_write_summary(af.f, &R->labels, R->ind, R->nind, R->pd.trials, R->res);
   if (rc) {

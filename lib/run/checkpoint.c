@@ -221,7 +221,8 @@ static const char *last_line(const char *buf, size_t n) {
   return p;
 }
 
-/* fitness.csv ends at csv_bytes with the row of generation - 1 */
+/* fitness.csv ends at csv_bytes with the row of generation - 1 (its first column:
+ * selftalk/fitnesscsv.h) */
 static int csv_ends_right(const char *buf, size_t n, int gen, char *msg, size_t msgsz) {
   char want[24];
   snprintf(want, sizeof want, "%d,", gen);

@@ -14,6 +14,7 @@
 #include "run/checkpoint.h"
 #include "core/internal.h"
 #include "selftalk/assemble.h"
+#include "selftalk/fitnesscsv.h"
 #include "selftalk/ga.h"
 #include "selftalk/integrated.h"
 #include "selftalk/io.h"
@@ -44,6 +45,7 @@ typedef struct run {
   double *fitness;
   stGenome *sorted;   /* the final population, best first */
   double *sorted_fit;
+  stFitnessCsv fcsv;  /* fitness.csv's columns (plan_run) */
   double t_start;
   int done_here;      /* generations run by this process */
   char path[6][ST_PATH_MAX];
@@ -213,39 +215,14 @@ static int has_main(const run *R) {
 static int has_handover(const run *R) { return has_main(R) && R->cfg->stage_handover; }
 static int chain_trials(const run *R) { return has_main(R) ? R->cfg->stage_chain_trials : 0; }
 
-/* fitness.csv's columns; then one best_tI column per trial (and best_hI per hand-over trial) */
-static void csv_header(const run *R, char *buf, size_t n) {
-  int k = snprintf(buf, n, "%s",
-                   R->integrated
-                       ? "generation,best,mean,worst,best_F_int,best_F_pred,best_bonus,"
-                         "best_bonus_auto,best_successes"
-                       : "generation,best,mean,worst,best_bonus,stage,stage_generation,all_success,"
-                         "best_successes,best_F_reach,best_F_open,best_F_grasp,best_F_move");
-  const int trials = R->integrated ? R->idef.trials : ST_PRIM_TRIALS;
-  for (int t = 0; t < trials && k < (int)n; t++) k += snprintf(buf + k, n - (size_t)k, ",best_t%d", t);
-  /* main-prim's hand-over trials (stage.handover): how many handed over, and each one solved */
-  if (has_handover(R) && k < (int)n) {
-    k += snprintf(buf + k, n - (size_t)k, ",best_handovers");
-    for (int t = 0; t < ST_HANDOVER_TRIALS && k < (int)n; t++)
-      k += snprintf(buf + k, n - (size_t)k, ",best_h%d", t);
-  }
-  /* main-prim's chained trials (stage.chain_trials): their eq. 2.14 fitness and each solved */
-  if (chain_trials(R) && k < (int)n) {
-    k += snprintf(buf + k, n - (size_t)k, ",best_F_chain");
-    for (int t = 0; t < chain_trials(R) && k < (int)n; t++)
-      k += snprintf(buf + k, n - (size_t)k, ",best_c%d", t);
-  }
-  if (k < (int)n) snprintf(buf + k, n - (size_t)k, "\n");
-}
-
 static stStatus start_files(run *R, char *err, size_t errsz) {
   stAtomicFile af;
   stStatus st = st_atomic_open(&af, R->path[P_CONFIG], err, errsz);
   if (st) return st;
   st_config_write(af.f, R->cfg);
   if ((st = st_atomic_commit(&af, err, errsz))) return st;
-  char hdr[1024];
-  csv_header(R, hdr, sizeof hdr);
+  char hdr[4096];
+  st_csv_header_text(&R->fcsv.schema, hdr, sizeof hdr);
   FILE *f = fopen(R->path[P_CSV], "w");
   if (!f || fputs(hdr, f) < 0 || fclose(f) != 0) {
     st__errf(err, errsz, "%s: cannot write: %s", R->path[P_CSV], strerror(errno));
@@ -357,38 +334,36 @@ static genStats gen_stats(const run *R) {
   return s;
 }
 
-static void csv_row(const run *R, int gen, const genStats *s, char *row, size_t n) {
-  int k;
-  if (R->integrated) {
+/* the generation's fitness.csv row: its fitness and its best's evaluation */
+static void fitness_row(const run *R, int gen, const genStats *s, stFitnessRow *w) {
+  memset(w, 0, sizeof *w);
+  w->generation = gen;
+  w->best = R->fitness[s->best], w->mean = s->mean, w->worst = s->worst;
+  if (R->integrated) { /* be->ntrials is idef.trials, the layout's */
     const stIntEvaluation *be = &R->ieval[s->best];
-    k = snprintf(row, n, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d", gen, R->fitness[s->best],
-                 s->mean, s->worst, be->f_int, be->f_pred, be->bonus, be->bonus_auto, be->successes);
-    for (int t = 0; t < be->ntrials; t++) k += snprintf(row + k, n - (size_t)k, ",%d", be->success[t]);
-  } else {
-    const stEvaluation *be = &R->eval[s->best];
-    k = snprintf(row, n, "%d,%.17g,%.17g,%.17g,%.17g,%s,%d,%d,%d,%.17g,%.17g,%.17g,%.17g", gen,
-                 R->fitness[s->best], s->mean, s->worst, R->cfg->fitness_bonus * be->successes,
-                 stage_label(R), R->stage_gen, s->all, be->successes, be->fp[0], be->fp[1], be->fp[2],
-                 be->fp[3]);
-    for (int t = 0; t < ST_PRIM_TRIALS; t++) k += snprintf(row + k, n - (size_t)k, ",%d", be->success[t]);
-    if (has_handover(R)) {
-      k += snprintf(row + k, n - (size_t)k, ",%d", be->handovers);
-      for (int t = 0; t < ST_HANDOVER_TRIALS; t++)
-        k += snprintf(row + k, n - (size_t)k, ",%d", be->handover_success[t]);
-    }
-    if (chain_trials(R)) { /* 0 in simple-prim generations */
-      k += snprintf(row + k, n - (size_t)k, ",%.17g", be->f_chain);
-      for (int t = 0; t < chain_trials(R); t++)
-        k += snprintf(row + k, n - (size_t)k, ",%d", t < be->chain_trials ? be->chain_success[t] : 0);
-    }
+    w->f_int = be->f_int, w->f_pred = be->f_pred, w->bonus = be->bonus;
+    w->bonus_auto = be->bonus_auto, w->successes = be->successes;
+    for (int t = 0; t < be->ntrials; t++) w->success[t] = be->success[t];
+    return;
   }
-  snprintf(row + k, n - (size_t)k, "\n");
+  const stEvaluation *be = &R->eval[s->best];
+  w->bonus = R->cfg->fitness_bonus * be->successes;
+  st__strlcpy(w->stage, stage_label(R), sizeof w->stage);
+  w->stage_generation = R->stage_gen, w->all_success = s->all, w->successes = be->successes;
+  for (int p = 0; p < ST_NPRIM; p++) w->f_prim[p] = be->fp[p];
+  for (int t = 0; t < ST_PRIM_TRIALS; t++) w->success[t] = be->success[t];
+  w->handovers = be->handovers;
+  for (int t = 0; t < ST_HANDOVER_TRIALS; t++) w->handover_success[t] = be->handover_success[t];
+  w->f_chain = be->f_chain; /* 0 in simple-prim generations, and the chained trials unsolved */
+  for (int t = 0; t < be->chain_trials; t++) w->chain_success[t] = be->chain_success[t];
 }
 
 /* the generation's fitness.csv row and its best genotype, appended and synced */
 static stStatus write_records(run *R, int gen, const genStats *s, char *err, size_t errsz) {
-  char row[2048];
-  csv_row(R, gen, s, row, sizeof row);
+  stFitnessRow w;
+  fitness_row(R, gen, s, &w);
+  char row[4096];
+  st_csv_row_text(&R->fcsv.schema, &w, row, sizeof row);
   stStatus st = append(R->path[P_CSV], row, err, errsz);
   if (st) return st;
   char bg[4 * ST_GENOME_MAX_GENES + 256];
@@ -524,6 +499,9 @@ static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz
   const int cap = R->integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations;
   R->limit = def->generations > 0 ? def->generations : cap;
   R->threads = st_thread_count(def->threads, cfg);
+  const stFitnessLayout fl = {R->integrated, R->integrated ? R->idef.trials : ST_PRIM_TRIALS,
+                              has_handover(R), chain_trials(R)};
+  st_fitness_csv(&fl, &R->fcsv);
   return ST_OK;
 }
 

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT
- * For the fuzz targets of the apps' readers (fuzz_score.c, fuzz_stats.c), which include the
- * app's source itself (its main renamed) so that they reach exactly the code the app runs: the
- * few functions of apps/app_common.c a reader calls. app_read_text hands over the fuzz input
+ * For the fuzz target of an app's reader (fuzz_score.c), which includes the app's source
+ * itself (its main renamed) so that it reaches exactly the code the app runs: the few
+ * functions of apps/app_common.c a reader calls. app_read_text hands over the fuzz input
  * (NUL bytes refused as the bounded reader does), app_die jumps back to the target, which frees
  * what the reader held. Include before the app's source. */
 #ifndef SELFTALK_FUZZ_APP_SHIM_H

@@ -1,55 +1,88 @@
 /* SPDX-License-Identifier: MIT
- * Fuzz target: ./apps/stats's readers (apps/stats.c, included with its main renamed: the app's
- * own code). The first byte picks the reader: one number per line (mwu, quartiles), a
- * summary.csv (table, describe) or a trials.csv (selftalk, times), the rest is the file.
- * Properties: the quartiles of accepted numbers are finite and ordered; accepted rows are
- * unique by key and sorted; a trials file's individuals partition its rows, each found again
- * by binary search; the app frees what it allocated. */
+ * Fuzz target: ./apps/stats's readers, the library's (selftalk/csv.h, selftalk/postcsv.h,
+ * selftalk/stats.h: the in-memory entry points of lib/core/readers.h, which the file readers
+ * call). The first byte picks the reader: one number per line (mwu, quartiles), a summary.csv
+ * (table, describe) or a trials.csv (selftalk, times), the rest is the file. Properties: the
+ * quartiles of accepted numbers are finite and ordered; accepted rows are unique by key and
+ * sorted; a summary's samples hold its test's rows; a trials file's individuals partition its
+ * rows, each found again by binary search, and its comparisons (when it has a NAME0) have p in
+ * (0, 1]. Leaks fail as crashes (libFuzzer's leak check). */
 #define _POSIX_C_SOURCE 200809L
-#include "app_common.h"
-#include "app_shim.h"
-#define main stats_app_main
-#include "../../apps/stats.c"
-#undef main
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
 
-static rows g_rs;
+#include "core/readers.h"
+#include "selftalk/poststats.h"
 
-static void check_order(const rows *rs, rowKey key) {
+static stPostDef g_def[ST_POST_NTESTS];
+
+static void check_order(const stCsvRows *rs) {
   for (int i = 1; i < rs->n; i++)
-    if (key(rs->data + rs->size * (size_t)rs->ord[i - 1], rs->data + rs->size * (size_t)rs->ord[i]) >= 0)
+    if (st_csv_compare(rs->schema, rs->schema->nkey, st_csv_sorted(rs, i - 1), st_csv_sorted(rs, i)) >= 0)
       abort();
 }
 
-static void numbers(void) {
+static void numbers(const char *text, size_t len) {
+  double *x;
   int n;
-  double *x = read_numbers("fuzz.txt", &n);
+  if (st__numbers_parse("fuzz.txt", text, len, &x, &n, NULL, 0)) return;
   stQuartiles q;
-  if (st_quartiles(x, n, &q, NULL, 0)) abort();
+  if (n < 1 || st_quartiles(x, n, &q, NULL, 0)) abort();
   if (!(isfinite(q.q1) && isfinite(q.median) && isfinite(q.q3)) || !(q.min <= q.q1) ||
       !(q.q1 <= q.median) || !(q.median <= q.q3) || !(q.q3 <= q.max))
     abort();
   free(x);
 }
 
-static void summary(void) {
-  load_csv("fuzz.csv", SUM_COLS, NCOLS(SUM_COLS), sizeof(sumRow), check_sum, sum_key, sum_name, &g_rs);
-  check_order(&g_rs, sum_key);
-  rows_free(&g_rs);
+/* the test the app would pick without --test, or the first */
+static const char *some_test(const stCsvRows *rs) {
+  stPostNames tests;
+  if (st_post_tests(rs, &tests, NULL, 0)) return NULL;
+  const char *t = st_post_pick_test(&tests, NULL);
+  return t ? t : tests.n ? tests.name[0] : NULL;
 }
 
-static void trials(void) {
-  load_csv("fuzz.csv", TRIAL_COLS, NCOLS(TRIAL_COLS), sizeof(trialRow), check_trial, trial_key,
-           trial_name, &g_rs);
-  check_order(&g_rs, trial_key);
+static void summary(const char *text, size_t len) {
+  stCsvRows rs;
+  if (st__csv_parse("fuzz.csv", text, len, st_post_summary_schema(), NULL, &rs, NULL, 0)) return;
+  check_order(&rs);
+  const char *test = some_test(&rs);
+  stPostSamples s;
+  if (test && !st_post_samples(&rs, test, &s, NULL, 0)) {
+    int n = 0, want = 0;
+    for (int k = 0; k < s.conds.n; k++) n += s.n[k];
+    for (int i = 0; i < rs.n; i++) want += !strcmp(((const stPostSummaryRow *)st_csv_row(&rs, i))->test, test);
+    if (n != want) abort();
+    st_post_samples_free(&s);
+  }
+  st_csv_rows_free(&rs);
+}
+
+static void trials(const char *text, size_t len) {
+  stCsvRows rs;
+  if (st__csv_parse("fuzz.csv", text, len, st_post_trials_schema(), g_def, &rs, NULL, 0)) return;
+  check_order(&rs);
+  stCsvGroup *g;
   int ng, covered = 0;
-  group *g = groups_of(&g_rs, &ng);
+  if (st_csv_groups(&rs, ST_POST_INDIVIDUAL_KEY, &g, &ng, NULL, 0)) abort();
   for (int i = 0; i < ng; i++) {
     covered += g[i].end - g[i].start;
-    if (find_group(&g_rs, g, ng, TROW(&g_rs, &g[i], 0)) != &g[i]) abort();
+    if (st_csv_group_find(&rs, ST_POST_INDIVIDUAL_KEY, g, ng, st_csv_sorted(&rs, g[i].start)) != &g[i])
+      abort();
   }
-  if (covered != g_rs.n) abort();
+  if (covered != rs.n) abort();
   free(g);
-  rows_free(&g_rs);
+  const char *test = some_test(&rs);
+  stPostComparisons cs;
+  const stMwuDef def = st_mwu_default_def();
+  if (test && !st_post_compare(&rs, "fuzz.csv", test, &def, 0.01, &cs, NULL, 0)) {
+    for (int i = 0; i < cs.n; i++)
+      if (!(cs.c[i].mwu.p > 0.0 && cs.c[i].mwu.p <= 1.0)) abort();
+    st_post_comparisons_free(&cs);
+  }
+  st_csv_rows_free(&rs);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
@@ -61,17 +94,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     for (int t = 0; t < ST_POST_NTESTS; t++) st_post_def_from_config(&cfg, (stPostTest)t, &g_def[t]);
     init = 1;
   }
-  g_input = (const char *)data + 1, g_input_len = size - 1;
-  memset(&g_rs, 0, sizeof g_rs);
-  if (setjmp(g_die)) { /* refused */
-    shim_free_all();
-    return 0;
-  }
+  const char *text = (const char *)data + 1;
   switch (data[0] % 3) {
-    case 0: numbers(); break;
-    case 1: summary(); break;
-    default: trials();
+    case 0: numbers(text, size - 1); break;
+    case 1: summary(text, size - 1); break;
+    default: trials(text, size - 1);
   }
-  if (shim_live()) abort(); /* the reader left something allocated */
   return 0;
 }

@@ -1,0 +1,163 @@
+/* SPDX-License-Identifier: MIT
+ * fitness.csv (selftalk/fitnesscsv.h): its one column table, a layout's columns, and the
+ * reader of a generation's trials. */
+#include "selftalk/fitnesscsv.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/internal.h"
+#include "selftalk/io.h"
+
+#define R stFitnessRow
+#define P ST_FITNESS_PRIMITIVE
+#define I ST_FITNESS_INTEGRATED
+#define BOTH (ST_FITNESS_PRIMITIVE | ST_FITNESS_INTEGRATED)
+/* the integrated and the primitive columns interleaved so that each keeps its order */
+static const stFitnessColumn g_cols[] = {
+    {ST_CSV_COL_INT(R, generation, "generation", 0), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, best, "best"), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, mean, "mean"), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, worst, "worst"), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, f_int, "best_F_int"), I, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, f_pred, "best_F_pred"), I, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, bonus, "best_bonus"), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, bonus_auto, "best_bonus_auto"), I, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_NAME(R, stage, "stage"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_INT(R, stage_generation, "stage_generation", 0), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_INT(R, all_success, "all_success", 0), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_INT(R, successes, "best_successes", 0), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_REACH], "best_F_reach"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_OPEN], "best_F_open"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_GRASP], "best_F_grasp"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_MOVE], "best_F_move"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
+    {ST_CSV_COL_INT(R, success[0], "best_t%d", 0), BOTH, ST_FITNESS_ALL, ST_FITNESS_PER_TRIAL},
+    /* main-prim's hand-over trials (stage.handover): how many handed over, and each solved */
+    {ST_CSV_COL_INT(R, handovers, "best_handovers", 0), P, ST_FITNESS_HANDOVER, ST_FITNESS_ONE},
+    {ST_CSV_COL_INT(R, handover_success[0], "best_h%d", 0), P, ST_FITNESS_HANDOVER,
+     ST_FITNESS_PER_HANDOVER},
+    /* main-prim's chained trials (stage.chain_trials): their eq. 2.14 fitness and each solved */
+    {ST_CSV_COL_REAL(R, f_chain, "best_F_chain"), P, ST_FITNESS_CHAIN, ST_FITNESS_ONE},
+    {ST_CSV_COL_INT(R, chain_success[0], "best_c%d", 0), P, ST_FITNESS_CHAIN, ST_FITNESS_PER_CHAIN},
+};
+#undef R
+#undef P
+#undef I
+#undef BOTH
+#define NCOLS ((int)(sizeof g_cols / sizeof g_cols[0]))
+#define GENERATION (&g_cols[0].col) /* the first column: checkpoint.c finds rows by it */
+
+/* the trials' columns (best_t%d) */
+static const stCsvColumn *trial_family(void) {
+  int i = 0;
+  while (g_cols[i].per != ST_FITNESS_PER_TRIAL) i++;
+  return &g_cols[i].col;
+}
+
+const stFitnessColumn *st_fitness_columns(int *n) {
+  ST_ASSERT(n);
+  *n = NCOLS;
+  return g_cols;
+}
+
+void st_fitness_csv(const stFitnessLayout *l, stFitnessCsv *c) {
+  ST_ASSERT(l && c && l->trials >= 0 && l->trials <= ST_FITNESS_MAX_TRIALS);
+  ST_ASSERT(l->chain_trials >= 0 && l->chain_trials <= ST_CHAIN_TRIALS_MAX);
+  memset(c, 0, sizeof *c);
+  const unsigned stage = l->integrated ? ST_FITNESS_INTEGRATED : ST_FITNESS_PRIMITIVE;
+  const int has[] = {1, !l->integrated && l->handover, !l->integrated && l->chain_trials > 0};
+  const int count[] = {1, l->trials, ST_HANDOVER_TRIALS, l->chain_trials};
+  int k = 0;
+  for (int i = 0; i < NCOLS; i++) {
+    const stFitnessColumn *f = &g_cols[i];
+    if (!(f->stages & stage) || !has[f->part]) continue;
+    for (int t = 0; t < count[f->per]; t++, k++) {
+      c->col[k] = f->col;
+      if (f->per == ST_FITNESS_ONE) continue;
+      snprintf(c->name[k], sizeof c->name[k], f->col.name, t);
+      c->col[k].name = c->name[k];
+      c->col[k].offset += (size_t)t * sizeof(int);
+    }
+  }
+  const stCsvSchema s = {"fitness.csv", c->col, k, 0, 0, sizeof(stFitnessRow), NULL};
+  c->schema = s;
+}
+
+/* ---- reading a generation's trials ---- */
+
+/* splits a CSV line in place; returns the number of fields (at most max) */
+static int split_csv(char *line, char **field, int max) {
+  int n = 0;
+  line[strcspn(line, "\r\n")] = 0;
+  for (char *p = line; n < max;) {
+    field[n++] = p;
+    p = strchr(p, ',');
+    if (!p) break;
+    *p++ = 0;
+  }
+  return n;
+}
+
+#define MAX_FIELDS 64
+
+/* the generation column and the trials' columns (at most max) of a header */
+static int trial_columns(char *header, int *gcol, int *tcol, int max) {
+  char *f[MAX_FIELDS];
+  const int n = split_csv(header, f, MAX_FIELDS);
+  int nt = 0;
+  *gcol = -1;
+  for (int i = 0; i < n; i++) {
+    char want[32];
+    snprintf(want, sizeof want, trial_family()->name, nt);
+    if (!strcmp(f[i], GENERATION->name)) *gcol = i;
+    if (!strcmp(f[i], want) && nt < max) tcol[nt++] = i;
+  }
+  return nt;
+}
+
+stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
+                                  int *n, char *err, size_t errsz) {
+  ST_ASSERT(path && success && n && max >= 0 && max <= MAX_FIELDS);
+  char *text;
+  size_t len;
+  stStatus st = st_text_read(path, ST_FILE_MAX, &text, &len, err, errsz);
+  if (st) return st;
+  int gcol = -1, tcol[MAX_FIELDS], lineno = 0, found = 0;
+  *n = 0;
+  const char *rest = text, *at;
+  size_t n_at;
+  while (!found && !st && st__text_line(&rest, text + len, &at, &n_at, NULL)) {
+    char *line = text + (at - text);
+    line[n_at] = 0; /* our copy: each line a C string (the last one's byte is the final NUL) */
+    if (++lineno == 1) {
+      *n = trial_columns(line, &gcol, tcol, max);
+      if (gcol < 0 || *n == 0) {
+        char first[32];
+        snprintf(first, sizeof first, trial_family()->name, 0);
+        st = ST_ERR_PARSE;
+        st__errf(err, errsz, "%s:1: no %s and %s columns (expected the fitness.csv of an "
+                 "integrated run)", path, GENERATION->name, first);
+      }
+      continue;
+    }
+    char *fld[MAX_FIELDS];
+    const int nf = split_csv(line, fld, MAX_FIELDS);
+    int g;
+    if (nf <= tcol[*n - 1] || nf <= gcol || st__parse_int(fld[gcol], &g)) {
+      st = ST_ERR_PARSE;
+      st__errf(err, errsz, "%s:%d: %d fields or %s '%s' (expected a row of the header's "
+               "columns)", path, lineno, nf, GENERATION->name, nf > gcol ? fld[gcol] : "");
+      break;
+    }
+    if (g != generation) continue;
+    found = 1;
+    for (int i = 0; i < *n; i++) success[i] = (uint8_t)(strcmp(fld[tcol[i]], "0") != 0);
+  }
+  free(text);
+  if (!st && !found) {
+    st = ST_ERR_PARSE;
+    st__errf(err, errsz, "%s: no row for generation %d, the last of best.genome (expected the "
+             "run's own fitness.csv)", path, generation);
+  }
+  return st;
+}
