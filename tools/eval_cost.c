@@ -93,8 +93,9 @@ static void parse(int argc, char **argv, options *o) {
     else die(USAGE);
   }
   if (!o->config) die("missing CONFIG");
-  if (o->caretaker && o->test != ST_POST_GENERALISATION)
-    die("--caretaker goes with --posteval generalisation");
+  if (o->caretaker && (o->test < 0 || st_post_test_info(o->test)->variant != ST_POST_CARETAKER))
+    die("--caretaker goes with a --posteval test whose variant is the caretaker's words "
+        "(generalisation)");
   if (o->test >= 0 && (o->spread || o->stage >= 0))
     die("--spread and --stage go with an evolution stage, not --posteval");
 }
