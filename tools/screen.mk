@@ -41,9 +41,11 @@ KEYS_handover_chain_gated_mut := $(KEYS_handover_chain_gated) --set ga.mutation_
 # from there; it replaces two of the thesis's starts, so a result would be replayed on the 16
 # fixed trials and, if it helps, built as extra trials (docs/PROTOCOL.md, "More exploration")
 KEYS_handover_chain_gated_flex := $(KEYS_handover_chain_gated) --set postures.grasp_partial_flex=0.4
+# and 6 cm up (all four grasp starts): high and partly flexed at once, as the chains hand over
+KEYS_handover_chain_gated_highflex := $(KEYS_handover_chain_gated_flex) --set postures.grasp_gap=0.06
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
   chain_gated handover_chain_gated handover_chain_sum handover_chain_gated_mut \
-  handover_chain_gated_flex
+  handover_chain_gated_flex handover_chain_gated_highflex
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
 $(error CAND=$(CAND): expected one of $(CANDIDATES))
