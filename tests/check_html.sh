@@ -44,7 +44,7 @@ cmp -s "$tmp/e1.csv" "$tmp/e2.csv" && ok "the trace is unchanged by --html" || k
 # individual's talking to itself (type A: self-talk labels and linguistic outputs)
 page integration "$APPDIR/replay" "$RUN/population.genome" data/evolved/integration_test/config.ini \
   --posteval integration --trial 0
-page stct "$APPDIR/replay" data/evolved/int_stct_s1/population.genome data/evolved/int_stct_s1/config.ini \
+page stct "$APPDIR/replay" data/evolved/unchained/int_stct_s1/population.genome data/evolved/unchained/int_stct_s1/config.ini \
   --trial 1 --generation 99
 for n in integration stct; do
   [ "$(($(wc -l < "$tmp/$n.csv") - 1))" = 240 ] && ok "$n: 240 steps" || ko "$n: steps" "$(wc -l < "$tmp/$n.csv")"

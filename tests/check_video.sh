@@ -10,7 +10,7 @@ CHECK=check_video
 source "$(dirname "$0")/check_lib.sh"
 PY=${PYTHON:-/usr/bin/python3}
 export APPDIR PYTHON="$PY"
-STCT=(data/evolved/int_stct_s1/best.genome data/evolved/int_stct_s1/config.ini --generation 99
+STCT=(data/evolved/unchained/int_stct_s1/best.genome data/evolved/unchained/int_stct_s1/config.ini --generation 99
       --set integrated.steps=23)
 VIDEO=tools/trial_video.sh
 

@@ -166,11 +166,11 @@ static void test_fitness_csv_layouts(void) {
     const char *run;
   } cases[] = {
       {{0, ST_PRIM_TRIALS, 0, 0}, "data/evolved/prims_s2/fitness.csv"},
-      {{1, 8, 0, 0}, "data/evolved/int_stct_s1/fitness.csv"},
+      {{1, 8, 0, 0}, "data/evolved/unchained/int_stct_s1/fitness.csv"},
       {{0, ST_PRIM_TRIALS, 0, 8}, "data/evolved/chain_candidates/chain_gated_p2_s1/fitness.csv"},
       {{0, ST_PRIM_TRIALS, 1, 0}, "data/evolved/chain_candidates/handover_p2_s1/fitness.csv"},
       {{0, ST_PRIM_TRIALS, 1, 8}, "data/evolved/chain_candidates/hcg_p2_s1/fitness.csv"},
-      {{1, 8, 1, 8}, "data/evolved/int_ct_s1/fitness.csv"}, /* integrated: no main-prim parts */
+      {{1, 8, 1, 8}, "data/evolved/unchained/int_ct_s1/fitness.csv"}, /* integrated: no main-prim parts */
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     stFitnessCsv c;
@@ -227,7 +227,7 @@ static void test_fitness_csv_successes(void) {
   uint8_t s[ST_INT_MAX_TRIALS];
   int n = 0;
   char err[512] = "";
-  CU_ASSERT_EQUAL_FATAL(st_fitness_csv_successes("data/evolved/int_stct_s1/fitness.csv", 0, s,
+  CU_ASSERT_EQUAL_FATAL(st_fitness_csv_successes("data/evolved/unchained/int_stct_s1/fitness.csv", 0, s,
                                                  ST_INT_MAX_TRIALS, &n, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL(n, 8);
   char path[256];

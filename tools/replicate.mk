@@ -131,7 +131,7 @@ COST_SAMPLE ?= 4
 COST_PRIM_POP ?= data/evolved/prims_s2/population.genome
 COST_CHAIN_POP ?= data/evolved/chain_candidates/hcg_p2_from50/checkpoint
 # % is the condition (stct, st, ct, ni)
-COST_INT_POP ?= data/evolved/int_%_s1/population.genome
+COST_INT_POP ?= data/evolved/unchained/int_%_s1/population.genome
 REMEASURE ?=
 cost:
 	@$(PYTHON) tools/replicate_cost.py --preset=$(PRESET) --protocol=$(PROTOCOL) --runs=$(RUNS) \
