@@ -2,7 +2,8 @@
  * bench: speed of the simulation with a network in the loop.
  *
  *   bench [--mode kinematic|dynamic] [--threads N] [--reps R] [--trials T] [--no-baseline]
- *         [--baseline section.key=value] [--config FILE] [--set k=v]
+ *         [--baseline section.key=value] [--config FILE] [--set k=v] [--rows]
+ *         [--only random|press|held]
  *
  * Runs T trials of 60 control steps (50 ms each) per repetition, random genotypes, one world
  * per thread, and prints the median over R repetitions:
@@ -17,7 +18,15 @@
  * dynamics.substep=0.005 (or the --baseline override). Dynamic mode also prints the contact-rich
  * figure held=...: the four move starts (the ball in a stable grasp) with the table gone from
  * the first step and the hand frozen at its start posture, 60 steps each; held_kept counts the
- * trials whose ball is still above the table at the end. */
+ * trials whose ball is still above the table at the end. And press=...: the hand closing on the
+ * ball on the table, from the four grasp starts (the scripted controller's grasp, recorded once
+ * from the step before its hand starts closing and replayed, 60 steps; press_kept counts the
+ * balls still above the table top). The baseline line repeats cpu, press and held for the
+ * baseline's configuration, measured interleaved (so --set KEY=on --baseline KEY=off is a
+ * same-run before / after of a key). --rows prints, per scenario, what ODE's step solved: the
+ * share of sub-steps with the robot in ODE, the contact points per such sub-step by pair kind
+ * and the LCP rows (6 per hinge in ODE's step + 3 per contact point), and the sub-steps redone
+ * by dynamics.motor_active_set. --only runs one scenario (for profiling). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,6 +35,7 @@
 
 #include "app_common.h"
 #include "selftalk/evolve.h"
+#include "selftalk/scripted.h"
 #include "selftalk/trial.h"
 
 static const char *prog = "bench";
@@ -63,59 +73,130 @@ static double bench_trial(const stProtocol *p, stWorkspace *ws, const stNetParam
   return sum;
 }
 
-/* the contact-rich case: the ball in the hand of a move start, table gone, commands frozen;
- * returns 1 when the ball is still above the table top at the end */
-static int held_trial(stWorld *w, const stScene *scene, const double *q0, const double *obj,
-                      const double *target, int steps, uint64_t seed) {
+/* what the ODE step solved over some trials: sub-steps, those with the robot in ODE, contact
+ * points by pair kind (stDynInfo) */
+typedef struct dynStats {
+  long substeps, ode_substeps, unstable, redos;
+  long points[ST_DYN_PAIR_COUNT];
+} dynStats;
+
+static void stats_add(dynStats *st, const stWorld *w) {
+  stDynInfo in;
+  st_world_dynamic_info(w, &in);
+  st->substeps += (long)in.substeps * w->step;
+  st->ode_substeps += in.dyn_substeps;
+  st->unstable += st_world_unstable(w);
+  st->redos += in.motor_redos;
+  for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) st->points[k] += in.contact_points[k];
+}
+
+/* the contact-rich cases:
+ *   held:  the ball in the hand of a move start, the table gone, commands frozen;
+ *   press: the hand closing on the ball on the table (pressPlan, below; plan non-NULL).
+ * Returns 1 when the ball is still above the table top at the end (held: kept in the hand). */
+typedef struct pressPlan pressPlan;
+static int fixed_trial(stWorld *w, const stScene *scene, const double *q0, const double *obj,
+                       const double *target, const double (*plan_y)[ST_NDOF], int steps,
+                       uint64_t seed, dynStats *st) {
   st_world_set_seed(w, seed);
   st_world_reset(w, q0, obj, target);
-  st_world_set_object_table_collision(w, 0);
+  if (!plan_y) st_world_set_object_table_collision(w, 0);
   double y[ST_NET_MAX_OUT] = {0};
   memcpy(y, q0, sizeof(double) * ST_NDOF);
-  for (int t = 0; t < steps && !st_world_unstable(w); t++) st_world_step(w, y);
+  for (int t = 0; t < steps && !st_world_unstable(w); t++) {
+    if (plan_y) memcpy(y, plan_y[t], sizeof(double) * ST_NDOF);
+    st_world_step(w, y);
+  }
+  stats_add(st, w);
   return !st_world_unstable(w) && w->obj[2] > scene->table_hi[2];
 }
 
-/* T held trials on the given threads (trial t: move start t mod 4; with solver step the same
- * start gives the same trajectory); returns the elapsed time and counts the balls kept */
-static double held_run(const stRobot *robot, const stScene *scene, const stDynDef *def,
-                       const double (*q0)[ST_NPOSTURE][ST_NDOF], int trials, int steps, int threads,
-                       long *kept) {
+static void plan_trial(const pressPlan *plan, int k, const double **q0, const double **obj,
+                       const double **target, const double (**y)[ST_NDOF]);
+
+/* T contact-rich trials on the given threads (trial t: start t mod 4 of press with a plan, else
+ * of held; with solver step the same start gives the same trajectory); returns the elapsed
+ * time and counts the balls kept */
+static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPlan *plan,
+                        int trials, int steps, int threads, long *kept, dynStats *stats,
+                        stDynInfo *info) {
   double t0 = now();
   long k_sum = 0;
+  dynStats acc;
+  memset(&acc, 0, sizeof acc);
 #pragma omp parallel num_threads(threads) reduction(+ : k_sum)
   {
     stWorld *w = NULL;
     char e[256];
-    if (st_world_create_dynamic(robot, scene, def, &w, e, sizeof e) == ST_OK) {
+    dynStats mine;
+    memset(&mine, 0, sizeof mine);
+    if (st_world_create_dynamic(p->robot, &p->scene, def, &w, e, sizeof e) == ST_OK) {
+#pragma omp single
+      st_world_dynamic_info(w, info);
 #pragma omp for schedule(dynamic, 1)
       for (int t = 0; t < trials; t++) {
         const int k = t % ST_NPOSTURE;
-        k_sum += held_trial(w, scene, q0[ST_PRIM_MOVE][k], scene->obj_pos[k], scene->target[k % 2],
-                            steps, (uint64_t)t);
+        const double *q0 = p->posture[ST_PRIM_MOVE][k], *obj = p->scene.obj_pos[k];
+        const double *target = p->scene.target[k % 2];
+        const double(*y)[ST_NDOF] = NULL;
+        if (plan) plan_trial(plan, k, &q0, &obj, &target, &y);
+        k_sum += fixed_trial(w, &p->scene, q0, obj, target, y, steps, (uint64_t)t, &mine);
       }
       st_world_destroy(w);
     } else {
 #pragma omp critical
       fprintf(stderr, "%s: %s\n", prog, e);
     }
+#pragma omp critical
+    {
+      acc.substeps += mine.substeps;
+      acc.ode_substeps += mine.ode_substeps;
+      acc.unstable += mine.unstable;
+      acc.redos += mine.redos;
+      for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) acc.points[k] += mine.points[k];
+    }
   }
   *kept += k_sum;
+  stats->substeps += acc.substeps;
+  stats->ode_substeps += acc.ode_substeps;
+  stats->unstable += acc.unstable;
+  stats->redos += acc.redos;
+  for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) stats->points[k] += acc.points[k];
   return now() - t0;
 }
 
-typedef struct dynStats {
-  long substeps, ode_substeps, unstable;
-} dynStats;
+/* one line of what the solver had to do in a scenario: the share of sub-steps with the robot in
+ * ODE, and per such sub-step the contact points by pair kind and the LCP rows (6 per hinge in
+ * ODE's step, 3 per contact point) */
+static void print_rows(const char *name, const dynStats *st, const stDynInfo *info) {
+  const double ode = st->ode_substeps > 0 ? (double)st->ode_substeps : 1.0;
+  long all = 0;
+  for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) all += st->points[k];
+  printf("rows scenario=%s robot_in_ode=%.0f%% points_per_ode_substep=%.2f robot_table=%.2f "
+         "robot_ball=%.2f robot_base=%.2f object_table=%.2f object_floor=%.2f joint_rows=%d "
+         "lcp_rows=%.1f motor_redos=%.3f\n",
+         name, st->substeps ? 100.0 * (double)st->ode_substeps / (double)st->substeps : 0.0,
+         (double)all / ode, (double)st->points[ST_DYN_PAIR_ROBOT_TABLE] / ode,
+         (double)st->points[ST_DYN_PAIR_ROBOT_BALL] / ode,
+         (double)st->points[ST_DYN_PAIR_ROBOT_BASE] / ode,
+         (double)st->points[ST_DYN_PAIR_OBJECT_TABLE] / ode,
+         (double)st->points[ST_DYN_PAIR_OBJECT_FLOOR] / ode,
+         6 * (info->hinges - info->kinematic_hinges),
+         6.0 * (info->hinges - info->kinematic_hinges) + 3.0 * (double)all / ode,
+         (double)st->redos / ode);
+}
 
 /* T dynamic trials on the given threads; returns the elapsed time, fills per_trial */
 static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParams *np, int ngenome,
                       int trials, int steps, int threads, double *per_trial, dynStats *stats,
                       stDynInfo *info) {
   double t0 = now();
-  long sub = 0, ode = 0, unst = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : sub, ode, unst)
+  dynStats acc;
+  memset(&acc, 0, sizeof acc);
+#pragma omp parallel num_threads(threads)
   {
+    dynStats mine;
+    memset(&mine, 0, sizeof mine);
     stWorld *w = NULL;
     char e[256];
     if (st_world_create_dynamic(p->robot, &p->scene, def, &w, e, sizeof e) == ST_OK) {
@@ -132,26 +213,174 @@ static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParam
         st_trial_episode(p, &spec, (uint64_t)t, &ep, &unused);
         ep.steps = steps;
         per_trial[t] = bench_trial(p, &ws, &np[t % ngenome], &ep, prim);
-        stDynInfo in;
-        st_world_dynamic_info(w, &in);
-        sub += (long)in.substeps * w->step;
-        ode += in.dyn_substeps;
-        unst += st_world_unstable(w);
+        stats_add(&mine, w);
       }
       st_world_destroy(w);
     } else {
 #pragma omp critical
       fprintf(stderr, "%s: %s\n", prog, e);
     }
+#pragma omp critical
+    {
+      acc.substeps += mine.substeps;
+      acc.ode_substeps += mine.ode_substeps;
+      acc.unstable += mine.unstable;
+      acc.redos += mine.redos;
+      for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) acc.points[k] += mine.points[k];
+    }
   }
-  stats->substeps += sub;
-  stats->ode_substeps += ode;
-  stats->unstable += unst;
+  stats->substeps += acc.substeps;
+  stats->ode_substeps += acc.ode_substeps;
+  stats->unstable += acc.unstable;
+  stats->redos += acc.redos;
+  for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) stats->points[k] += acc.points[k];
   return now() - t0;
 }
 
+/* one configuration's figures over the repetitions: per repetition, control steps per wall
+ * second and per CPU-second of the random-network trials, the press and the held trials */
+typedef struct dynFigures {
+  double *rate, *cpu, *press, *pcpu, *held, *hcpu;
+  long press_kept, held_kept;
+  dynStats st, pst, hst;
+  stDynInfo info;
+} dynFigures;
+
+static void figures_alloc(dynFigures *f, int reps) {
+  memset(f, 0, sizeof *f);
+  double **a[6] = {&f->rate, &f->cpu, &f->press, &f->pcpu, &f->held, &f->hcpu};
+  for (int i = 0; i < 6; i++)
+    if (!(*a[i] = calloc((size_t)reps, sizeof(double)))) app_die(prog, "out of memory");
+}
+
+static void figures_free(dynFigures *f) {
+  double *a[6] = {f->rate, f->cpu, f->press, f->pcpu, f->held, f->hcpu};
+  for (int i = 0; i < 6; i++) free(a[i]);
+}
+
+/* the medians (each array sorted) */
+static void figures_median(dynFigures *f, int reps) {
+  double *a[6] = {f->rate, f->cpu, f->press, f->pcpu, f->held, f->hcpu};
+  for (int i = 0; i < 6; i++) qsort(a[i], (size_t)reps, sizeof(double), cmp_double);
+}
+
+/* the press trials: the scripted controller's grasp (lib/episode/scripted.c) from the four grasp
+ * starts with the table kept on, recorded once per configuration (untimed): its commands and
+ * the posture at the step its hand starts closing on the ball ("grasp:close", less PRESS_LEAD
+ * steps). A timed press trial starts at rest from that posture and replays the next
+ * PRESS_STEPS commands: the palm lowered over the ball, thumb and fingers closing and
+ * squeezing it on the table. */
+enum { PRESS_LEAD = 2, PRESS_STEPS = 60, PRESS_RECORD = 40 + PRESS_STEPS };
+struct pressPlan {
+  double q0[ST_NPOSTURE][ST_NDOF];
+  double obj[ST_NPOSTURE][3], target[ST_NPOSTURE][3];
+  double y[ST_NPOSTURE][PRESS_STEPS][ST_NDOF];
+};
+
+static void plan_trial(const pressPlan *plan, int k, const double **q0, const double **obj,
+                       const double **target, const double (**y)[ST_NDOF]) {
+  *q0 = plan->q0[k];
+  *obj = plan->obj[k];
+  *target = plan->target[k];
+  *y = plan->y[k];
+}
+
+typedef struct pressRecorder {
+  stController inner;
+  stScripted *s;
+  int start;                            /* first step of grasp:close, -1 before */
+  double y[PRESS_RECORD][ST_NDOF], q[PRESS_RECORD][ST_NDOF];
+} pressRecorder;
+
+static void rec_reset(void *self, const stEpisodeSpec *e) {
+  pressRecorder *r = self;
+  r->start = -1;
+  if (r->inner.reset) r->inner.reset(r->inner.self, e);
+}
+
+static void rec_act(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
+                    double *out) {
+  pressRecorder *r = self;
+  r->inner.act(r->inner.self, w, q, in, step, out);
+  if (step < PRESS_RECORD) {
+    memcpy(r->y[step], out, sizeof r->y[step]);
+    memcpy(r->q[step], w->qhat, sizeof r->q[step]);
+  }
+  if (r->start < 0 && !strcmp(st_scripted_phase(r->s), "grasp:close")) r->start = step;
+}
+
+static void press_record(const stProtocol *p, const stDynDef *def, pressPlan *plan) {
+  char err[1024];
+  stWorld *w = NULL;
+  stScripted *s = NULL;
+  if (st_world_create_dynamic(p->robot, &p->scene, def, &w, err, sizeof err) ||
+      st_scripted_create(p, &s, err, sizeof err))
+    app_die(prog, "press: %s", err);
+  stWorkspace ws = {NULL, w, NULL};
+  pressRecorder *r = malloc(sizeof *r);
+  if (!r) app_die(prog, "out of memory");
+  r->inner = st_scripted_controller(s);
+  r->s = s;
+  stController ctl = r->inner;
+  ctl.reset = rec_reset;
+  ctl.act = rec_act;
+  ctl.self = r;
+  double sum = 0;
+  const stScorer sc = {NULL, sum_step, NULL, &sum};
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    stTrialSpec spec;
+    st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_GRASP * ST_NPOSTURE + k, &spec);
+    stEpisodeSpec ep;
+    stWords words;
+    st_trial_episode(p, &spec, (uint64_t)k, &ep, &words);
+    ep.steps = PRESS_RECORD;
+    ep.table_off_step = -1;
+    if (st_episode_run(p, &ws, &ep, &ctl, &words, &sc, NULL, NULL, err, sizeof err))
+      app_die(prog, "press: %s", err);
+    int s0 = r->start - PRESS_LEAD;
+    if (r->start < 0 || s0 + PRESS_STEPS > PRESS_RECORD) s0 = PRESS_RECORD - PRESS_STEPS;
+    if (s0 < 0) s0 = 0;
+    memcpy(plan->q0[k], r->q[s0], sizeof plan->q0[k]);
+    memcpy(plan->obj[k], ep.obj, sizeof plan->obj[k]);
+    memcpy(plan->target[k], ep.target, sizeof plan->target[k]);
+    memcpy(plan->y[k], r->y[s0], sizeof plan->y[k]);
+  }
+  free(r);
+  st_scripted_destroy(s);
+  st_world_destroy(w);
+}
+
+/* repetition r of one configuration: the random-network trials, then press, then held */
+static void figures_rep(const stProtocol *p, const stDynDef *def, const pressPlan *plan,
+                        const stNetParams *np, int ngenome, int trials, int steps, int threads,
+                        const char *only, double *per_trial, dynFigures *f, int r) {
+  const int fixed_trials = 4 * ST_NPOSTURE;
+  double c0 = cpu_now();
+  if (!only || !strcmp(only, "random")) {
+    const double dt = dyn_run(p, def, np, ngenome, trials, steps, threads, per_trial, &f->st,
+                              &f->info);
+    f->rate[r] = (double)trials * steps / dt;
+    f->cpu[r] = (double)trials * steps / (cpu_now() - c0);
+  }
+  if (!only || !strcmp(only, "press")) {
+    c0 = cpu_now();
+    const double dt = fixed_run(p, def, plan, fixed_trials, PRESS_STEPS, threads, &f->press_kept,
+                                &f->pst, &f->info);
+    f->press[r] = (double)fixed_trials * PRESS_STEPS / dt;
+    f->pcpu[r] = (double)fixed_trials * PRESS_STEPS / (cpu_now() - c0);
+  }
+  if (!only || !strcmp(only, "held")) {
+    c0 = cpu_now();
+    const double dt = fixed_run(p, def, NULL, fixed_trials, steps, threads, &f->held_kept, &f->hst,
+                                &f->info);
+    f->held[r] = (double)fixed_trials * steps / dt;
+    f->hcpu[r] = (double)fixed_trials * steps / (cpu_now() - c0);
+  }
+}
+
 static int bench_dynamic(const stProtocol *p, const char *baseline_set, int baseline, int threads,
-                         int reps, int trials, const stNetParams *np, int ngenome) {
+                         int reps, int trials, int rows, const char *only, const stNetParams *np,
+                         int ngenome) {
   char err[1024];
   const stConfig *cfg = &p->cfg;
   stDynDef def, base_def;
@@ -160,61 +389,55 @@ static int bench_dynamic(const stProtocol *p, const char *baseline_set, int base
   if (st_config_set(&bcfg, baseline_set, err, sizeof err)) app_die(prog, "--baseline: %s", err);
   st_dyn_def_from_config(&bcfg, &base_def);
   const int steps = 60;
-  double *rate = malloc(sizeof *rate * (size_t)reps), *base = malloc(sizeof *base * (size_t)reps);
+  const long fixed_all = 4L * ST_NPOSTURE * reps;
+  pressPlan *plan = malloc(2 * sizeof *plan);
+  if (!plan) app_die(prog, "out of memory");
+  press_record(p, &def, &plan[0]);
+  if (baseline) press_record(p, &base_def, &plan[1]);
   double *per_trial = malloc(sizeof *per_trial * (size_t)trials);
-  double *held = malloc(sizeof *held * (size_t)reps);
-  double *cpu = malloc(sizeof *cpu * (size_t)reps), *bcpu = malloc(sizeof *bcpu * (size_t)reps);
-  double *hcpu = malloc(sizeof *hcpu * (size_t)reps);
-  const int held_trials = 4 * ST_NPOSTURE;
-  long kept = 0;
-  dynStats st = {0, 0, 0}, bst = {0, 0, 0};
-  stDynInfo info, binfo;
-  memset(&info, 0, sizeof info);
-  memset(&binfo, 0, sizeof binfo);
+  dynFigures f, b;
+  figures_alloc(&f, reps);
+  figures_alloc(&b, reps);
   for (int rr = 0; rr < 2 * reps; rr++) {
     const int is_base = rr % 2, r = rr / 2; /* interleaved so drifts hit both alike */
     if (is_base && !baseline) continue;
-    const double c0 = cpu_now();
-    double dt = dyn_run(p, is_base ? &base_def : &def, np, ngenome, trials, steps, threads,
-                        per_trial, is_base ? &bst : &st, is_base ? &binfo : &info);
-    (is_base ? base : rate)[r] = (double)trials * steps / dt;
-    (is_base ? bcpu : cpu)[r] = (double)trials * steps / (cpu_now() - c0);
-    if (!is_base) {
-      const double c1 = cpu_now();
-      held[r] = (double)held_trials * steps /
-                held_run(p->robot, &p->scene, &def, p->posture, held_trials, steps, threads, &kept);
-      hcpu[r] = (double)held_trials * steps / (cpu_now() - c1);
-    }
+    figures_rep(p, is_base ? &base_def : &def, &plan[is_base], np, ngenome, trials, steps,
+                threads, only, per_trial, is_base ? &b : &f, r);
   }
-  qsort(cpu, (size_t)reps, sizeof *cpu, cmp_double);
-  qsort(bcpu, (size_t)reps, sizeof *bcpu, cmp_double);
-  qsort(hcpu, (size_t)reps, sizeof *hcpu, cmp_double);
-  qsort(rate, (size_t)reps, sizeof *rate, cmp_double);
-  qsort(base, (size_t)reps, sizeof *base, cmp_double);
-  qsort(held, (size_t)reps, sizeof *held, cmp_double);
-  const double med = rate[reps / 2], med_base = base[reps / 2];
+  figures_median(&f, reps);
+  figures_median(&b, reps);
+  const int m = reps / 2;
+  const double med = f.rate[m], med_base = b.rate[m];
   printf("mode=dynamic steps_per_s=%.0f per_core=%.0f threads=%d bodies=%d substep=%g "
          "iterations=%d solver=%s reps=%d trials=%d steps_per_trial=%d robot_in_ode=%.0f%% "
          "unstable=%ld held=%.0f held_per_core=%.0f held_kept=%ld/%ld cpu_per_core=%.0f "
-         "held_cpu_per_core=%.0f\n",
-         med, med / threads, threads, info.bodies, def.substep, def.iterations,
-         st_config_enum_name("dynamics", "solver", info.solver), reps, trials, steps,
-         st.substeps ? 100.0 * (double)st.ode_substeps / (double)st.substeps : 0.0, st.unstable,
-         held[reps / 2], held[reps / 2] / threads, kept, (long)held_trials * reps, cpu[reps / 2],
-         hcpu[reps / 2]);
+         "held_cpu_per_core=%.0f press=%.0f press_per_core=%.0f press_kept=%ld/%ld "
+         "press_cpu_per_core=%.0f\n",
+         med, med / threads, threads, f.info.bodies, def.substep, def.iterations,
+         st_config_enum_name("dynamics", "solver", f.info.solver), reps, trials, steps,
+         f.st.substeps ? 100.0 * (double)f.st.ode_substeps / (double)f.st.substeps : 0.0,
+         f.st.unstable + f.pst.unstable + f.hst.unstable, f.held[m], f.held[m] / threads,
+         f.held_kept, fixed_all, f.cpu[m], f.hcpu[m], f.press[m], f.press[m] / threads,
+         f.press_kept, fixed_all, f.pcpu[m]);
   if (baseline)
     printf("baseline=%s steps_per_s=%.0f per_core=%.0f speedup=%.2f robot_in_ode=%.0f%% "
-           "unstable=%ld cpu_per_core=%.0f cpu_speedup=%.2f\n",
+           "unstable=%ld cpu_per_core=%.0f cpu_speedup=%.2f press_cpu_per_core=%.0f "
+           "press_speedup=%.2f press_kept=%ld/%ld held_cpu_per_core=%.0f held_speedup=%.2f "
+           "held_kept=%ld/%ld\n",
            baseline_set, med_base, med_base / threads, med / med_base,
-           bst.substeps ? 100.0 * (double)bst.ode_substeps / (double)bst.substeps : 0.0,
-           bst.unstable, bcpu[reps / 2], cpu[reps / 2] / bcpu[reps / 2]);
-  free(rate);
-  free(base);
+           b.st.substeps ? 100.0 * (double)b.st.ode_substeps / (double)b.st.substeps : 0.0,
+           b.st.unstable + b.pst.unstable + b.hst.unstable, b.cpu[m], f.cpu[m] / b.cpu[m],
+           b.pcpu[m], f.pcpu[m] / b.pcpu[m], b.press_kept, fixed_all, b.hcpu[m],
+           f.hcpu[m] / b.hcpu[m], b.held_kept, fixed_all);
+  if (rows) {
+    print_rows("random", &f.st, &f.info);
+    print_rows("press", &f.pst, &f.info);
+    print_rows("held", &f.hst, &f.info);
+  }
   free(per_trial);
-  free(held);
-  free(cpu);
-  free(bcpu);
-  free(hcpu);
+  free(plan);
+  figures_free(&f);
+  figures_free(&b);
   return 0;
 }
 
@@ -222,8 +445,9 @@ int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *mode = "kinematic";
-  int threads = 0, reps = 5, trials = 0, baseline = 1;
+  int threads = 0, reps = 5, trials = 0, baseline = 1, rows = 0;
   const char *baseline_set = "dynamics.substep=0.005";
+  const char *only = NULL; /* dynamic: random, press or held alone (profiling) */
   for (int i = 1; i < argc; i++) {
     if (app_config_arg(&ca, argc, argv, &i, prog)) continue;
     if (!strcmp(argv[i], "--mode") && i + 1 < argc) mode = argv[++i];
@@ -240,6 +464,8 @@ int main(int argc, char **argv) {
       i++;
     }
     else if (!strcmp(argv[i], "--no-baseline")) baseline = 0; /* e.g. for profiling */
+    else if (!strcmp(argv[i], "--rows")) rows = 1;
+    else if (!strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
     else if (!strcmp(argv[i], "--baseline") && i + 1 < argc) baseline_set = argv[++i];
     else app_die(prog, "unknown or incomplete option '%s' (see the header of apps/bench.c)", argv[i]);
   }
@@ -266,7 +492,7 @@ int main(int argc, char **argv) {
     st_net_decode(NULL, ST_ARCH_BASE, &g, &np[i], NULL, 0);
   }
   if (dynamic) {
-    int rc = bench_dynamic(p, baseline_set, baseline, threads, reps, trials, np, NGENOME);
+    int rc = bench_dynamic(p, baseline_set, baseline, threads, reps, trials, rows, only, np, NGENOME);
     free(np);
     st_protocol_destroy(p);
     return rc;

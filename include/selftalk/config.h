@@ -183,6 +183,7 @@ extern "C" {
   STR(dynamics, kinematic_joints, "torso_pitch,torso_yaw,l_shoulder_pitch,l_shoulder_roll,l_shoulder_yaw", "first joints of the chain that follow the servo law exactly in dynamic mode, their links kinematic bodies (PROTOCOL, Dynamic mode); empty: all bounded-torque motors") \
   BOOL(dynamics, free_motion, 1, "1: while no robot part can reach the table or the object within a sub-step, the robot moves kinematically (its servos cannot saturate) and ODE steps the object alone") \
   REAL(dynamics, contact_margin, 0.03, 0.0, 1.0, "free motion ends when a robot part comes this close to the table or the object, m (>= the distance a part moves in one sub-step)") \
+  BOOL(dynamics, motor_active_set, 0, "1 (solver step): unsaturated hinge motors enter the LCP unbounded, checked after the step, redone bounded if one saturates: the same solution up to rounding (PROTOCOL, Speed)") \
   /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */ \
   INT(posteval, integration_top, 10, 1, 100000, "integration test: genotypes taken from the top of each primitive run's population (thesis 2.10.1: the top 10)") \
   INT(posteval, integration_trials, 40, 1, 100000, "integration test: caretaker-guided trials per genotype; trial i has type k = i mod 4: reach posture k, object position k, target k mod 2, fresh offsets (thesis 2.10.1)") \

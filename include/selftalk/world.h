@@ -150,6 +150,7 @@ typedef struct stDynDef {
   int free_motion;           /* 1: the robot moves kinematically while nothing can touch it */
   double contact_margin;     /* m: closer than this to the table or the object, the robot is in
                                 ODE's step */
+  int motor_active_set;      /* 1: unsaturated motors enter ODE's LCP unbounded, checked after */
   char kinematic_joints[ST_CONFIG_STR_MAX]; /* comma-separated joint names: exact servos whose
                                 links are kinematic bodies (a prefix of the chain) */
 } stDynDef;
@@ -210,10 +211,23 @@ const char *st_world_unstable_reason(const stWorld *w);
  * to [0, 1]); in kinematic mode those of qhat. */
 void st_world_joint_angles(const stWorld *w, double *angle);
 
+/* The kinds of colliding pairs (stDynInfo.contact_points): a robot geometry with the table, with
+ * the object's sphere, with the object's base; the object (sphere or base) with the table, with
+ * the floor. */
+enum {
+  ST_DYN_PAIR_ROBOT_TABLE = 0,
+  ST_DYN_PAIR_ROBOT_BALL,
+  ST_DYN_PAIR_ROBOT_BASE,
+  ST_DYN_PAIR_OBJECT_TABLE,
+  ST_DYN_PAIR_OBJECT_FLOOR,
+  ST_DYN_PAIR_COUNT
+};
+
 /* Facts about a dynamic world (for benchmarks and logs). */
 typedef struct stDynInfo {
   int bodies;          /* ODE bodies of the robot (the object not included) */
   int hinges;          /* hinge joints */
+  int kinematic_hinges; /* of which exact servos (dynamics.kinematic_joints): not in ODE's step */
   int geoms;           /* robot collision geometries */
   int substeps;        /* sub-steps per control step */
   int solver;          /* solver in use (ST_DYN_*), after the random-generator check */
@@ -221,9 +235,14 @@ typedef struct stDynInfo {
   long solver_warnings; /* ODE warnings since the last reset (e.g. "LCP internal error": a
                            degenerate set of contacts) */
   long solver_retries;  /* sub-steps redone with softer constraints after such a warning */
+  long motor_redos;     /* dynamics.motor_active_set: sub-steps redone because an unbounded
+                           motor row needed more than its torque limit */
   long dyn_substeps;    /* sub-steps since the last reset with the robot in ODE's step (the
                            others were free motion) */
   int robot_in_ode;     /* the robot is in ODE's step now (near the table or the object) */
+  long contact_points[ST_DYN_PAIR_COUNT]; /* contact joints made since the last reset, by pair
+                                             (ST_DYN_PAIR_*): each is 3 rows of ODE's LCP (1
+                                             with zero friction), beside 6 per hinge in ODE */
 } stDynInfo;
 
 /* Fills info (all zero for a kinematic world). */

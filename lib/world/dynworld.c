@@ -55,6 +55,11 @@ typedef struct dynHinge {
   double lo, hi; /* range used for qhat (rad); the stops are stop_margin outside */
   double lo_set, hi_set; /* stops currently set in ODE */
   int kin;       /* in dynamics.kinematic_joints: an exact servo (joint disabled, body kinematic) */
+  double fmax;   /* motor torque limit, N m */
+  int bounded;   /* motor_active_set: the motor row enters the LCP bounded (it saturated) */
+  int free_row;  /* motor_active_set: this sub-step's motor row is unbounded (to be checked) */
+  double r1[3], axis[3]; /* motor_active_set: anchor from the child's centre, axis (step start) */
+  dJointFeedback fb;     /* motor_active_set: the hinge's forces on its child after a step */
 } dynHinge;
 
 typedef struct dynInternal {
@@ -91,9 +96,11 @@ typedef struct dynInternal {
   double *angle;            /* joint angle per model body (free motion: the state itself) */
   double *vel;              /* servo velocity of each hinge in the current sub-step (rad/s) */
   long dyn_substeps;        /* sub-steps with the robot in ODE since the reset */
+  long points[ST_DYN_PAIR_COUNT]; /* contact joints made since the reset, by pair kind */
   dContactGeom cg[64];
   long messages;            /* ODE warnings (e.g. "LCP internal error") since the reset */
   long retries;             /* sub-steps redone after such a warning */
+  long motor_redos;         /* motor_active_set: sub-steps redone because a motor saturated */
   double (*saved)[13];      /* body states before the current sub-step */
   int unstable;
   char reason[192];
@@ -176,6 +183,7 @@ void st_dyn_def_from_config(const stConfig *c, stDynDef *d) {
   d->fudge_factor = c->dynamics_fudge_factor;
   d->free_motion = c->dynamics_free_motion;
   d->contact_margin = c->dynamics_contact_margin;
+  d->motor_active_set = c->dynamics_motor_active_set;
   snprintf(d->kinematic_joints, sizeof d->kinematic_joints, "%s", c->dynamics_kinematic_joints);
 }
 
@@ -219,6 +227,9 @@ static int check_def(const stDynDef *d, double dt, int *nsub, char *err, size_t 
     BAD("dynamics.fudge_factor: %g (expected 0..1)", d->fudge_factor);
   if (!(d->contact_margin >= 0.0 && d->contact_margin <= 1.0))
     BAD("dynamics.contact_margin: %g (expected 0..1 m)", d->contact_margin);
+  if (d->motor_active_set && d->solver != ST_DYN_STEP)
+    BAD("dynamics.motor_active_set: on with solver quickstep (expected solver step: it acts on "
+        "the direct solver's LCP only)");
   if (!isfinite(d->floor_z)) BAD("dynamics.floor_z: %g (expected a finite height)", d->floor_z);
   if (!(d->unstable_speed > 0.0) || !(d->unstable_spin > 0.0) || !(d->limit_tolerance >= 0.0))
     BAD("dynamics.unstable_speed / unstable_spin / limit_tolerance_deg: %g / %g / %g (expected "
@@ -371,6 +382,8 @@ static stStatus create_hinge(stWorld *w, dynInternal *d, int b, char *err, size_
   dJointSetHingeParam(j, dParamVel, 0.0);
   dJointSetHingeParam(j, dParamFMax, effort);
   dynHinge *hg = &d->hinge[d->nhinge++];
+  hg->fmax = effort;
+  if (d->def.motor_active_set) dJointSetFeedback(j, &hg->fb);
   hg->j = j;
   hg->link = b;
   hg->dof = r->body_dof[b];
@@ -598,7 +611,7 @@ static void dyn_destroy(stWorld *w) {
  * ODE's colliders return at most the requested number of points, the first ones they find:
  * for the object's flat base on the table that is one side of the rim, and the object creeps.
  * So up to 16 are asked for and max_contacts of them kept, evenly spread over the list. */
-static int collide(dynInternal *d, dGeomID a, dGeomID b, int make, double mu) {
+static int collide(dynInternal *d, dGeomID a, dGeomID b, int make, double mu, int kind) {
   if (!a || !b) return 0;
   enum { ASK = 16 };
   const int n = dCollide(a, b, ASK, d->cg, sizeof d->cg[0]);
@@ -615,6 +628,7 @@ static int collide(dynInternal *d, dGeomID a, dGeomID b, int make, double mu) {
       if ((!b1 || dBodyIsKinematic(b1)) && (!b2 || dBodyIsKinematic(b2))) continue; /* no effect */
       dJointID j = dJointCreateContact(d->world, d->cgroup, &c);
       dJointAttach(j, b1, b2);
+      d->points[kind]++;
     }
   return n > 0;
 }
@@ -639,13 +653,13 @@ static void collide_object(stWorld *w, int make, stContacts *c) {
   object_aabb(d, oa);
   if (d->obj_table && st__aabb_overlap(oa, d->table_aabb)) {
     const double mu = d->def.table_friction;
-    int hit = collide(d, d->scene.ball, d->scene.table, make, mu);
-    hit |= collide(d, d->scene.base, d->scene.table, make, mu);
+    int hit = collide(d, d->scene.ball, d->scene.table, make, mu, ST_DYN_PAIR_OBJECT_TABLE);
+    hit |= collide(d, d->scene.base, d->scene.table, make, mu, ST_DYN_PAIR_OBJECT_TABLE);
     if (hit) c->object_table = 1;
   }
   if (oa[4] <= d->def.floor_z) {
-    collide(d, d->scene.ball, d->floor, make, d->def.table_friction);
-    collide(d, d->scene.base, d->floor, make, d->def.table_friction);
+    collide(d, d->scene.ball, d->floor, make, d->def.table_friction, ST_DYN_PAIR_OBJECT_FLOOR);
+    collide(d, d->scene.base, d->floor, make, d->def.table_friction, ST_DYN_PAIR_OBJECT_FLOOR);
   }
 }
 
@@ -662,13 +676,13 @@ static void collide_all(stWorld *w, int make, stContacts *c) {
     dReal a[6];
     dGeomGetAABB(gi, a);
     if (g->dyn && st__aabb_overlap(a, d->table_aabb) &&
-        collide(d, gi, d->scene.table, make, d->def.friction)) {
+        collide(d, gi, d->scene.table, make, d->def.friction, ST_DYN_PAIR_ROBOT_TABLE)) {
       if (g->is_arm) c->arm_table = 1;
       if (g->touch >= 0) c->touch[g->touch] = 1;
     }
     if (st__aabb_overlap(a, oa)) {
-      int hit = collide(d, gi, d->scene.ball, make, d->def.friction);
-      hit |= collide(d, gi, d->scene.base, make, d->def.friction);
+      int hit = collide(d, gi, d->scene.ball, make, d->def.friction, ST_DYN_PAIR_ROBOT_BALL);
+      hit |= collide(d, gi, d->scene.base, make, d->def.friction, ST_DYN_PAIR_ROBOT_BASE);
       if (hit) {
         c->robot_object = 1;
         if (g->touch >= 0) c->touch[g->touch] = c->touch_object[g->touch] = 1;
@@ -925,6 +939,8 @@ static void reset_joints(dynInternal *d) {
   for (int i = 0; i < d->nhinge; i++) {
     dynHinge *hg = &d->hinge[i];
     dJointSetHingeParam(hg->j, dParamVel, 0.0);
+    hg->bounded = hg->free_row = 0;
+    if (d->def.motor_active_set) dJointSetHingeParam(hg->j, dParamFMax, hg->fmax);
     set_stops(hg, hg->lo - d->def.stop_margin, hg->hi + d->def.stop_margin);
   }
   for (int g = 0; g < d->ngroup; g++) dBodyEnable(d->gbody[g]);
@@ -936,7 +952,9 @@ static void reset_counters(dynInternal *d) {
   d->obj_table = 1;
   d->messages = 0;
   d->retries = 0;
+  d->motor_redos = 0;
   d->dyn_substeps = 0;
+  memset(d->points, 0, sizeof d->points);
   d->unstable = 0;
   d->reason[0] = 0;
   d->rand_state = (uint32_t)(st_rng_mix64(d->seed ^ 0x6f64655f72616e64ull) >> 32);
@@ -1026,18 +1044,81 @@ static void restore_bodies(dynInternal *d, double (*st)[13]) {
   }
 }
 
+/* dynamics.motor_active_set, before a step: a hinge motor that did not saturate in the previous
+ * sub-step (and whose joint is off its stops, where ODE replaces the motor row by the stop's)
+ * gets an unbounded row, which ODE's Dantzig solver factors in one block with the joints' rows
+ * instead of pivoting it alone; its child's anchor and axis are kept for the check. */
+static void motors_prepare(dynInternal *d) {
+  for (int i = 0; i < d->nhinge; i++) {
+    dynHinge *hg = &d->hinge[i];
+    if (hg->kin) continue;
+    const double a = dJointGetHingeAngle(hg->j);
+    /* ODE's own test of an active stop (testRotationalLimit), on the same angle */
+    const int stop = a <= hg->lo_set || a >= hg->hi_set;
+    const int free_row = !hg->bounded && !stop && hg->fmax > 0.0;
+    if (free_row != hg->free_row)
+      dJointSetHingeParam(hg->j, dParamFMax, free_row ? dInfinity : hg->fmax);
+    hg->free_row = free_row;
+    if (!free_row && !hg->bounded) continue;
+    dVector3 anc, ax;
+    dJointGetHingeAnchor(hg->j, anc);
+    dJointGetHingeAxis(hg->j, ax);
+    const dReal *x = dBodyGetPosition(dJointGetBody(hg->j, 0));
+    for (int k = 0; k < 3; k++) {
+      hg->r1[k] = anc[k] - x[k];
+      hg->axis[k] = ax[k];
+    }
+  }
+}
+
+/* the motor torque of hinge hg in the step just taken: its forces on the child, less the
+ * moment of the linear rows at the anchor, along the axis (the angular rows act across it) */
+static double motor_torque(const dynHinge *hg) {
+  const dReal *f = hg->fb.f1, *t = hg->fb.t1;
+  const double *r = hg->r1;
+  const double m[3] = {t[0] - (r[1] * f[2] - r[2] * f[1]), t[1] - (r[2] * f[0] - r[0] * f[2]),
+                       t[2] - (r[0] * f[1] - r[1] * f[0])};
+  return m[0] * hg->axis[0] + m[1] * hg->axis[1] + m[2] * hg->axis[2];
+}
+
+/* after a step: 1 when an unbounded motor needed more than its limit (it becomes bounded and the
+ * sub-step must be redone); else a bounded motor that stayed inside its limit is unbounded again
+ * from the next sub-step. With every motor inside its limit the unbounded rows give the solution
+ * the bounded ones would (the LCP's matrix is positive definite: its solution is unique). */
+static int motors_check(dynInternal *d) {
+  int redo = 0;
+  for (int i = 0; i < d->nhinge; i++) {
+    dynHinge *hg = &d->hinge[i];
+    if (hg->free_row && fabs(motor_torque(hg)) > hg->fmax) {
+      hg->bounded = 1;
+      redo = 1;
+    }
+  }
+  if (redo) return 1;
+  for (int i = 0; i < d->nhinge; i++) {
+    dynHinge *hg = &d->hinge[i];
+    if (hg->bounded && !hg->free_row && fabs(motor_torque(hg)) < hg->fmax * (1.0 - 1e-6))
+      hg->bounded = 0;
+  }
+  return 0;
+}
+
 /* one ODE sub-step: contacts (flags ORed into c), then the stepper. ODE's direct solver can
  * fail on a degenerate set of contacts ("LCP internal error", reported through dMessage) and
  * then returns garbage: the sub-step is redone from the saved state with softer constraints
- * (contact and joint CFM x10, up to 3 times). Returns 0 when ODE ran out of memory. */
+ * (contact and joint CFM x10, up to 3 times). With motor_active_set, a sub-step in which an
+ * unbounded motor row exceeded its limit is redone with it bounded. Returns 0 when ODE ran out
+ * of memory. */
 static int ode_substep(stWorld *w, stContacts *c) {
   dynInternal *d = w->internal_;
   const int robot = d->robot_dyn;
+  const int mas = robot && d->def.motor_active_set && d->solver == ST_DYN_STEP;
   if (robot) save_bodies(d, d->saved);
   dSurfaceParameters surface = d->surface;
-  for (int attempt = 0;; attempt++) {
+  for (int attempt = 0, redo = 0;;) {
     if (robot) collide_all(w, 1, c);
     else collide_object(w, 1, c);
+    if (mas) motors_prepare(d);
     int ok;
     const unsigned long msg0 = st__ode_messages();
     if (d->solver == ST_DYN_QUICKSTEP) {
@@ -1050,15 +1131,23 @@ static int ode_substep(stWorld *w, stContacts *c) {
     const unsigned long msgs = st__ode_messages() - msg0;
     dJointGroupEmpty(d->cgroup);
     d->messages += (long)msgs;
-    if (!ok || !msgs || !robot || attempt == 3) {
-      d->surface = surface;
-      dWorldSetCFM(d->world, d->def.cfm);
-      return ok;
+    if (ok && msgs && robot && attempt < 3) { /* degenerate: softer */
+      restore_bodies(d, d->saved);
+      d->surface.soft_cfm *= 10.0;
+      dWorldSetCFM(d->world, d->def.cfm * pow(10.0, attempt + 1));
+      d->retries++;
+      attempt++;
+      continue;
     }
-    restore_bodies(d, d->saved);
-    d->surface.soft_cfm *= 10.0;
-    dWorldSetCFM(d->world, d->def.cfm * pow(10.0, attempt + 1));
-    d->retries++;
+    if (ok && mas && redo <= d->nhinge && motors_check(d)) { /* a motor saturated: bounded */
+      restore_bodies(d, d->saved);
+      d->motor_redos++;
+      redo++;
+      continue;
+    }
+    d->surface = surface;
+    dWorldSetCFM(d->world, d->def.cfm);
+    return ok;
   }
 }
 
@@ -1172,14 +1261,17 @@ static void dyn_info(const stWorld *w, stDynInfo *info) {
   const dynInternal *d = w->internal_;
   info->bodies = d->ngroup;
   info->hinges = d->nhinge;
+  info->kinematic_hinges = d->nkin;
   info->geoms = d->geoms.n;
   info->substeps = d->nsub;
   info->solver = d->solver;
   info->rand_interposed = g_rand_interposed;
   info->solver_warnings = d->messages;
   info->solver_retries = d->retries;
+  info->motor_redos = d->motor_redos;
   info->dyn_substeps = d->dyn_substeps;
   info->robot_in_ode = d->robot_dyn;
+  memcpy(info->contact_points, d->points, sizeof d->points);
 }
 
 static void dyn_joint_angles(const stWorld *w, double *angle) {
