@@ -2,7 +2,7 @@
  * bench: speed of the simulation with a network in the loop.
  *
  *   bench [--mode kinematic|dynamic] [--threads N] [--reps R] [--trials T] [--no-baseline]
- *         [--baseline section.key=value] [--config FILE] [--set k=v] [--rows]
+ *         [--baseline section.key=value[;key=value...]] [--config FILE] [--set k=v] [--rows]
  *         [--only random|press|held]
  *
  * Runs T trials of 60 control steps (50 ms each) per repetition, random genotypes, one world
@@ -26,7 +26,7 @@
  * same-run before / after of a key). --rows prints, per scenario, what ODE's step solved: the
  * share of sub-steps with the robot in ODE, the contact points per such sub-step by pair kind
  * and the LCP rows (6 per hinge in ODE's step + 3 per contact point), and the sub-steps redone
- * by dynamics.motor_active_set. --only runs one scenario (for profiling). */
+ * by dynamics.motor_active_set and by dynamics.adaptive_joints. --only runs one scenario (for profiling). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -76,7 +76,7 @@ static double bench_trial(const stProtocol *p, stWorkspace *ws, const stNetParam
 /* what the ODE step solved over some trials: sub-steps, those with the robot in ODE, contact
  * points by pair kind (stDynInfo) */
 typedef struct dynStats {
-  long substeps, ode_substeps, unstable, redos;
+  long substeps, ode_substeps, unstable, redos, aredos, hinge_substeps;
   long points[ST_DYN_PAIR_COUNT];
 } dynStats;
 
@@ -87,6 +87,8 @@ static void stats_add(dynStats *st, const stWorld *w) {
   st->ode_substeps += in.dyn_substeps;
   st->unstable += st_world_unstable(w);
   st->redos += in.motor_redos;
+  st->aredos += in.adaptive_redos;
+  st->hinge_substeps += in.dyn_hinge_substeps;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) st->points[k] += in.contact_points[k];
 }
 
@@ -153,6 +155,8 @@ static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPla
       acc.ode_substeps += mine.ode_substeps;
       acc.unstable += mine.unstable;
       acc.redos += mine.redos;
+      acc.aredos += mine.aredos;
+      acc.hinge_substeps += mine.hinge_substeps;
       for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) acc.points[k] += mine.points[k];
     }
   }
@@ -161,6 +165,8 @@ static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPla
   stats->ode_substeps += acc.ode_substeps;
   stats->unstable += acc.unstable;
   stats->redos += acc.redos;
+  stats->aredos += acc.aredos;
+  stats->hinge_substeps += acc.hinge_substeps;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) stats->points[k] += acc.points[k];
   return now() - t0;
 }
@@ -168,22 +174,22 @@ static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPla
 /* one line of what the solver had to do in a scenario: the share of sub-steps with the robot in
  * ODE, and per such sub-step the contact points by pair kind and the LCP rows (6 per hinge in
  * ODE's step, 3 per contact point) */
-static void print_rows(const char *name, const dynStats *st, const stDynInfo *info) {
+static void print_rows(const char *name, const dynStats *st) {
   const double ode = st->ode_substeps > 0 ? (double)st->ode_substeps : 1.0;
   long all = 0;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) all += st->points[k];
   printf("rows scenario=%s robot_in_ode=%.0f%% points_per_ode_substep=%.2f robot_table=%.2f "
-         "robot_ball=%.2f robot_base=%.2f object_table=%.2f object_floor=%.2f joint_rows=%d "
-         "lcp_rows=%.1f motor_redos=%.3f\n",
+         "robot_ball=%.2f robot_base=%.2f object_table=%.2f object_floor=%.2f joint_rows=%.1f "
+         "lcp_rows=%.1f motor_redos=%.3f adaptive_redos=%.3f\n",
          name, st->substeps ? 100.0 * (double)st->ode_substeps / (double)st->substeps : 0.0,
          (double)all / ode, (double)st->points[ST_DYN_PAIR_ROBOT_TABLE] / ode,
          (double)st->points[ST_DYN_PAIR_ROBOT_BALL] / ode,
          (double)st->points[ST_DYN_PAIR_ROBOT_BASE] / ode,
          (double)st->points[ST_DYN_PAIR_OBJECT_TABLE] / ode,
          (double)st->points[ST_DYN_PAIR_OBJECT_FLOOR] / ode,
-         6 * (info->hinges - info->kinematic_hinges),
-         6.0 * (info->hinges - info->kinematic_hinges) + 3.0 * (double)all / ode,
-         (double)st->redos / ode);
+         6.0 * (double)st->hinge_substeps / ode,
+         6.0 * (double)st->hinge_substeps / ode + 3.0 * (double)all / ode,
+         (double)st->redos / ode, (double)st->aredos / ode);
 }
 
 /* T dynamic trials on the given threads; returns the elapsed time, fills per_trial */
@@ -226,6 +232,8 @@ static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParam
       acc.ode_substeps += mine.ode_substeps;
       acc.unstable += mine.unstable;
       acc.redos += mine.redos;
+      acc.aredos += mine.aredos;
+      acc.hinge_substeps += mine.hinge_substeps;
       for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) acc.points[k] += mine.points[k];
     }
   }
@@ -233,6 +241,8 @@ static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParam
   stats->ode_substeps += acc.ode_substeps;
   stats->unstable += acc.unstable;
   stats->redos += acc.redos;
+  stats->aredos += acc.aredos;
+  stats->hinge_substeps += acc.hinge_substeps;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) stats->points[k] += acc.points[k];
   return now() - t0;
 }
@@ -386,7 +396,11 @@ static int bench_dynamic(const stProtocol *p, const char *baseline_set, int base
   stDynDef def, base_def;
   st_dyn_def_from_config(cfg, &def);
   stConfig bcfg = *cfg;
-  if (st_config_set(&bcfg, baseline_set, err, sizeof err)) app_die(prog, "--baseline: %s", err);
+  /* one or more k=v separated by ';' */
+  char sets[1024];
+  snprintf(sets, sizeof sets, "%s", baseline_set);
+  for (char *save = NULL, *kv = strtok_r(sets, ";", &save); kv; kv = strtok_r(NULL, ";", &save))
+    if (st_config_set(&bcfg, kv, err, sizeof err)) app_die(prog, "--baseline: %s", err);
   st_dyn_def_from_config(&bcfg, &base_def);
   const int steps = 60;
   const long fixed_all = 4L * ST_NPOSTURE * reps;
@@ -430,9 +444,9 @@ static int bench_dynamic(const stProtocol *p, const char *baseline_set, int base
            b.pcpu[m], f.pcpu[m] / b.pcpu[m], b.press_kept, fixed_all, b.hcpu[m],
            f.hcpu[m] / b.hcpu[m], b.held_kept, fixed_all);
   if (rows) {
-    print_rows("random", &f.st, &f.info);
-    print_rows("press", &f.pst, &f.info);
-    print_rows("held", &f.hst, &f.info);
+    print_rows("random", &f.st);
+    print_rows("press", &f.pst);
+    print_rows("held", &f.hst);
   }
   free(per_trial);
   free(plan);

@@ -14,6 +14,8 @@
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
+/* dynamics.adaptive_joints as PROTOCOL's Speed table measures it */
+#define ADAPTIVE_SET "dynamics.adaptive_joints=l_elbow,l_wrist_prosup,l_wrist_pitch,l_wrist_yaw"
 
 /* the shared default config, robot and scene (tests/main.c) */
 #define g_cfg (st_test_fixture()->cfg)
@@ -622,13 +624,109 @@ static void test_motor_active_set(void) {
   st_world_destroy(fresh);
 }
 
+/* dynamics.adaptive_joints: refused unless the powered hinges right after kinematic_joints, in
+ * chain order, and with quickstep; on, it acts (the elbow and the wrist are exact servos while
+ * the ball is held: not bit for bit the default's) with the same physics: from each move posture
+ * the ball stays in the hand within 2 mm of where the default puts it; the hand pushed into the
+ * table makes them motors again (sub-steps redone) without the world going unstable; a reset
+ * world equals a fresh one */
+static void test_adaptive_joints(void) {
+  stRobot *r = robot();
+  CU_ASSERT_PTR_NOT_NULL_FATAL(r);
+  static const char *const bad[][2] = {
+      {"dynamics.adaptive_joints=l_wrist_prosup", NULL},
+      {"dynamics.adaptive_joints=l_elbow,no_such_joint", NULL},
+      {"dynamics.adaptive_joints=l_elbow,l_wrist_pitch", NULL},
+      {"dynamics.adaptive_joints=l_elbow", "dynamics.solver=quickstep"},
+      {"dynamics.adaptive_limit=0.8", NULL}, /* without adaptive joints it could not act */
+  };
+  for (size_t b = 0; b < sizeof bad / sizeof bad[0]; b++) {
+    stConfig cfg;
+    st_config_default(&cfg);
+    char err[512];
+    for (int i = 0; i < 2 && bad[b][i]; i++)
+      CU_ASSERT_FATAL(st_config_set(&cfg, bad[b][i], err, sizeof err) == 0);
+    stDynDef def;
+    st_dyn_def_from_config(&cfg, &def);
+    stWorld *w = NULL;
+    CU_ASSERT(st_world_create_dynamic(r, &g_scene, &def, &w, err, sizeof err) != ST_OK);
+    ST_ASSERT_CONTAINS(err, "dynamics.adaptive_");
+    st_world_destroy(w);
+  }
+
+  {
+    stConfig cfg;
+    st_config_default(&cfg);
+    char err[512];
+    CU_ASSERT(st_config_set(&cfg, "dynamics.adaptive_limit=1.5", err, sizeof err) != 0);
+    CU_ASSERT(st_config_set(&cfg, "dynamics.adaptive_limit=0", err, sizeof err) != 0);
+  }
+  static const char *const on[] = {ADAPTIVE_SET, NULL};
+  const stScene *s = move_scene();
+  stWorld *w[2] = {make_world(s, NULL), make_world(s, on)};
+  CU_ASSERT_PTR_NOT_NULL_FATAL(w[0]);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(w[1]);
+  int differs = 0;
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    double q[ST_NDOF], obj[2][3];
+    CU_ASSERT_FATAL(posture(s, ST_PRIM_MOVE, k, q) == 0);
+    for (int v = 0; v < 2; v++) {
+      st_world_reset(w[v], q, s->obj_pos[k], s->target[k % 2]);
+      for (int t = 0; t < 10; t++) st_world_step_dynamic(w[v], q);
+      st_world_set_object_table_collision(w[v], 0);
+      for (int t = 0; t < 60; t++) st_world_step_dynamic(w[v], q);
+      CU_ASSERT(!st_world_unstable(w[v]));
+      CU_ASSERT(w[v]->obj[2] > s->table_hi[2]); /* held */
+      memcpy(obj[v], w[v]->obj, sizeof obj[v]);
+    }
+    stDynInfo info;
+    st_world_dynamic_info(w[1], &info);
+    CU_ASSERT(info.adaptive_kinematic >= 1); /* holding the ball needs little elbow torque */
+    differs |= memcmp(obj[0], obj[1], sizeof obj[0]) != 0;
+    CU_ASSERT(dist3(obj[0], obj[1]) < 0.002);
+    if (!(dist3(obj[0], obj[1]) < 0.002))
+      fprintf(stderr, "\n  move %d: object %.4f %.4f %.4f with the key, %.4f %.4f %.4f without\n",
+              k, obj[1][0], obj[1][1], obj[1][2], obj[0][0], obj[0][1], obj[0][2]);
+  }
+  CU_ASSERT(differs); /* it acts */
+  /* the hand driven down into the table from a grasp start: the servos give way to motors */
+  double q[ST_NDOF], y[ST_NDOF];
+  CU_ASSERT_FATAL(posture(s, ST_PRIM_GRASP, 0, q) == 0);
+  st_world_reset(w[1], q, s->obj_pos[0], s->target[0]);
+  memcpy(y, q, sizeof y);
+  y[ST_DOF_SHOULDER_PITCH] = y[ST_DOF_SHOULDER_PITCH] > 0.5 ? 0.0 : 1.0;
+  y[ST_DOF_ELBOW] = y[ST_DOF_ELBOW] > 0.5 ? 0.0 : 1.0;
+  for (int t = 0; t < 40; t++) st_world_step_dynamic(w[1], y);
+  stDynInfo info;
+  st_world_dynamic_info(w[1], &info);
+  CU_ASSERT(!st_world_unstable(w[1]));
+  CU_ASSERT(info.adaptive_redos > 0);
+  if (st_world_unstable(w[1]) || !(info.adaptive_redos > 0))
+    fprintf(stderr, "\n  pushed: %s, %ld redone\n", st_world_unstable_reason(w[1]),
+            info.adaptive_redos);
+  st_world_destroy(w[0]);
+  st_world_destroy(w[1]);
+
+  stWorld *used = make_world(move_scene(), on), *fresh = make_world(move_scene(), on);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(used);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(fresh);
+  detResult a, b, c;
+  det_trial(used, 0, &a);
+  det_trial(used, 1, &b);
+  det_trial(fresh, 1, &c);
+  CU_ASSERT(memcmp(&b, &c, sizeof b) == 0);
+  st_world_destroy(used);
+  st_world_destroy(fresh);
+}
+
 /* ---- robustness ---------------------------------------------------------------------------- */
 
 /* fuzzed commands from every primitive's postures: random, saturating 0/1, square waves at the
  * step rate; no NaN, no joint beyond its range by more than 5 degrees (docs/PROTOCOL.md: the
  * stops act from the sub-step after a joint reaches them, and impacts on the hand can push
  * the 0.45-0.65 N m wrist joints a few degrees past their range), never unstable */
-static void test_fuzz(void) {
+/* with the [dynamics] overrides set (NULL: the defaults) */
+static void fuzz_with(const char *const *set) {
   enum { TRIALS = 16, STEPS = 100 };
   const double tol = 5.0 * DEG;
   int bad_nan = 0, bad_limit = 0, unstable = 0, ran = 0;
@@ -642,7 +740,7 @@ static void test_fuzz(void) {
     stWorld *w = NULL;
     double *angle = malloc(sizeof(double) * (size_t)r->nbody);
 #pragma omp critical
-    w = make_world(move_scene(), NULL);
+    w = make_world(move_scene(), set);
 #pragma omp for schedule(dynamic, 1)
     for (int trial = 0; trial < TRIALS; trial++) {
       if (!w || !angle) continue; /* counted below: every trial must run */
@@ -698,6 +796,18 @@ static void test_fuzz(void) {
   if (getenv("ST_TEST_VERBOSE")) fprintf(stderr, "\n  fuzz: worst %.2f deg beyond a range\n", worst / DEG);
 }
 
+static void test_fuzz(void) { fuzz_with(NULL); }
+
+/* the same with the keys of PROTOCOL's Speed table on */
+static void test_fuzz_speed_keys(void) {
+  static const char *const mas[] = {"dynamics.motor_active_set=1", NULL};
+  static const char *const ad[] = {ADAPTIVE_SET, NULL};
+  static const char *const both[] = {ADAPTIVE_SET, "dynamics.motor_active_set=1", NULL};
+  fuzz_with(mas);
+  fuzz_with(ad);
+  fuzz_with(both);
+}
+
 /* a non-finite command makes the world unstable with a reason; it stays frozen until reset */
 static void test_unstable_reported(void) {
   stWorld *w = make_world(NULL, NULL);
@@ -739,4 +849,6 @@ void st_suite_dynamics(void) {
   ST_ADD_TEST(test_fuzz);
   ST_ADD_TEST(test_unstable_reported);
   ST_ADD_TEST(test_motor_active_set);
+  ST_ADD_TEST(test_adaptive_joints);
+  ST_ADD_TEST(test_fuzz_speed_keys);
 }

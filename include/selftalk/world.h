@@ -126,6 +126,10 @@ const char *st_shape_kind_name(int kind);
 
 enum { ST_DYN_QUICKSTEP = 0, ST_DYN_STEP, ST_DYN_SOLVER_COUNT }; /* dynamics.solver */
 
+/* dynamics.adaptive_limit's default (the key table's), the only value it takes while
+ * dynamics.adaptive_joints is empty */
+#define ST_DYN_ADAPTIVE_LIMIT 0.5
+
 /* The [dynamics] keys (see selftalk/config.h for their meaning and defaults). */
 typedef struct stDynDef {
   int solver;                /* ST_DYN_QUICKSTEP or ST_DYN_STEP */
@@ -151,6 +155,9 @@ typedef struct stDynDef {
   double contact_margin;     /* m: closer than this to the table or the object, the robot is in
                                 ODE's step */
   int motor_active_set;      /* 1: unsaturated motors enter ODE's LCP unbounded, checked after */
+  char adaptive_joints[ST_CONFIG_STR_MAX]; /* comma-separated joint names after kinematic_joints:
+                                exact servos while the torque they need is within their limit */
+  double adaptive_limit;     /* ... times the motor's torque limit (ST_DYN_ADAPTIVE_LIMIT) */
   char kinematic_joints[ST_CONFIG_STR_MAX]; /* comma-separated joint names: exact servos whose
                                 links are kinematic bodies (a prefix of the chain) */
 } stDynDef;
@@ -237,8 +244,13 @@ typedef struct stDynInfo {
   long solver_retries;  /* sub-steps redone with softer constraints after such a warning */
   long motor_redos;     /* dynamics.motor_active_set: sub-steps redone because an unbounded
                            motor row needed more than its torque limit */
+  long adaptive_redos;  /* dynamics.adaptive_joints: sub-steps redone because an exact servo
+                           needed more torque than its motor has (or touched the table) */
+  int adaptive_kinematic; /* dynamics.adaptive_joints: how many are exact servos now */
   long dyn_substeps;    /* sub-steps since the last reset with the robot in ODE's step (the
                            others were free motion) */
+  long dyn_hinge_substeps; /* the hinges in ODE's step (not exact servos), summed over those
+                              sub-steps: 6 LCP rows each */
   int robot_in_ode;     /* the robot is in ODE's step now (near the table or the object) */
   long contact_points[ST_DYN_PAIR_COUNT]; /* contact joints made since the last reset, by pair
                                              (ST_DYN_PAIR_*): each is 3 rows of ODE's LCP (1

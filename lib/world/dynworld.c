@@ -40,6 +40,10 @@
 #include "world/world_backend.h"
 #include "world/world_geom.h"
 
+#include <stdint.h>
+
+enum { ST_DYN_MAX_CFB = 256 }; /* contact forces kept per sub-step for adaptive_joints */
+
 /* what a robot geometry (geoms.g[i] for model geometry i) touches */
 typedef struct dynGeom {
   int link;      /* model body the geometry belongs to */
@@ -96,11 +100,25 @@ typedef struct dynInternal {
   double *angle;            /* joint angle per model body (free motion: the state itself) */
   double *vel;              /* servo velocity of each hinge in the current sub-step (rad/s) */
   long dyn_substeps;        /* sub-steps with the robot in ODE since the reset */
+  long dyn_hinge_substeps;  /* ... summed over them: the hinges in ODE's step */
   long points[ST_DYN_PAIR_COUNT]; /* contact joints made since the reset, by pair kind */
   dContactGeom cg[64];
   long messages;            /* ODE warnings (e.g. "LCP internal error") since the reset */
   long retries;             /* sub-steps redone after such a warning */
   long motor_redos;         /* motor_active_set: sub-steps redone because a motor saturated */
+  /* dynamics.adaptive_joints: hinges nkin0 .. nkin0 + nadapt - 1 (the chain after the exact
+   * servos of kinematic_joints) are exact servos while the torque they need stays within their
+   * limit; the first nkin hinges are kinematic now (nkin0 <= nkin <= nkin0 + nadapt) */
+  int nkin0, nadapt;
+  int *want_kin;            /* per hinge: its motor needed little torque in the last sub-step */
+  double (*vprev)[6];       /* per body: linear and angular velocity in the previous sub-step */
+  double (*cpos)[3];        /* per body: centre of mass at the start of the step */
+  dJointFeedback *cfb;      /* contacts on adaptive kinematic bodies: their forces */
+  int *cfb_body, *cfb_side; /* ... on which body, as ODE's body 1 (0) or body 2 (1) */
+  int ncfb;
+  int kin_static_hit;       /* lowest adaptive kinematic body touching the table or the floor
+                               (no contact joint can act there), or nhinge for none */
+  long adapt_redos;         /* sub-steps redone because an adaptive joint needed more torque */
   double (*saved)[13];      /* body states before the current sub-step */
   int unstable;
   char reason[192];
@@ -184,6 +202,8 @@ void st_dyn_def_from_config(const stConfig *c, stDynDef *d) {
   d->free_motion = c->dynamics_free_motion;
   d->contact_margin = c->dynamics_contact_margin;
   d->motor_active_set = c->dynamics_motor_active_set;
+  snprintf(d->adaptive_joints, sizeof d->adaptive_joints, "%s", c->dynamics_adaptive_joints);
+  d->adaptive_limit = c->dynamics_adaptive_limit;
   snprintf(d->kinematic_joints, sizeof d->kinematic_joints, "%s", c->dynamics_kinematic_joints);
 }
 
@@ -227,6 +247,11 @@ static int check_def(const stDynDef *d, double dt, int *nsub, char *err, size_t 
     BAD("dynamics.fudge_factor: %g (expected 0..1)", d->fudge_factor);
   if (!(d->contact_margin >= 0.0 && d->contact_margin <= 1.0))
     BAD("dynamics.contact_margin: %g (expected 0..1 m)", d->contact_margin);
+  if (!(d->adaptive_limit > 0.0 && d->adaptive_limit <= 1.0))
+    BAD("dynamics.adaptive_limit: %g (expected > 0 and <= 1)", d->adaptive_limit);
+  if (!d->adaptive_joints[0] && d->adaptive_limit != ST_DYN_ADAPTIVE_LIMIT)
+    BAD("dynamics.adaptive_limit: %g with dynamics.adaptive_joints empty (expected the default "
+        "%g: it acts on the adaptive joints only)", d->adaptive_limit, ST_DYN_ADAPTIVE_LIMIT);
   if (d->motor_active_set && d->solver != ST_DYN_STEP)
     BAD("dynamics.motor_active_set: on with solver quickstep (expected solver step: it acts on "
         "the direct solver's LCP only)");
@@ -504,6 +529,42 @@ static stStatus mark_kinematic(dynInternal *d, const stModel *m, char *err, size
   return ST_OK;
 }
 
+/* dynamics.adaptive_joints: hinges after those of kinematic_joints, in chain order, that are
+ * exact servos while the torque they need stays within their limit (set_kin switches them) */
+static stStatus mark_adaptive(dynInternal *d, const stModel *m, char *err, size_t errsz) {
+  enum { MAX_AD = 16 };
+  char names[MAX_AD][ST_NAME_MAX];
+  const int n = st__split_names(d->def.adaptive_joints, names, MAX_AD);
+  d->nkin0 = d->nkin;
+  if (n < 0 || n > MAX_AD || d->nkin + n > d->nhinge) {
+    st__errf(err, errsz, "dynamics.adaptive_joints: '%s' (expected at most %d hinge names, each "
+             "shorter than %d characters)", d->def.adaptive_joints, MAX_AD, ST_NAME_MAX);
+    return ST_ERR_RANGE;
+  }
+  for (int k = 0; k < n; k++) {
+    const int i = d->nkin + k;
+    const char *need = m->jnt_name[d->hinge[i].link];
+    const int pg = d->link_group[m->body_parent[d->hinge[i].link]];
+    if (strcmp(names[k], need) || pg != i - 1 || d->hinge[i].fmax <= 0.0) {
+      st__errf(err, errsz, "dynamics.adaptive_joints: '%s': joint %d is '%s' (expected the %d "
+               "powered hinges that follow dynamics.kinematic_joints along the chain, in order: "
+               "'%s' here)", d->def.adaptive_joints, k + 1, names[k], n, need);
+      return ST_ERR_RANGE;
+    }
+  }
+  d->nadapt = n;
+  if (n && d->solver != ST_DYN_STEP) {
+    st__errf(err, errsz, "dynamics.adaptive_joints: '%s' with solver quickstep (expected solver "
+             "step)", d->def.adaptive_joints);
+    return ST_ERR_RANGE;
+  }
+  for (int g = 0; g < d->ngroup; g++) dBodySetData(d->gbody[g], (void *)(intptr_t)(g + 1));
+  if (n)
+    for (int i = 0; i < d->nhinge; i++)
+      if (!d->hinge[i].kin) dJointSetFeedback(d->hinge[i].j, &d->hinge[i].fb);
+  return ST_OK;
+}
+
 /* the whole ODE world, phase by phase */
 static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   group_links(d, w->robot->model);
@@ -513,6 +574,7 @@ static stStatus build(stWorld *w, dynInternal *d, char *err, size_t errsz) {
   if (!st) st = create_geoms(w, d, err, errsz);
   if (!st) st = create_scene(w, d, err, errsz);
   if (!st) st = mark_kinematic(d, w->robot->model, err, errsz);
+  if (!st) st = mark_adaptive(d, w->robot->model, err, errsz);
   return st;
 }
 
@@ -530,7 +592,13 @@ static int alloc_arrays(dynInternal *d, const stModel *m) {
   d->vel = calloc(nb, sizeof *d->vel);
   d->saved = calloc(nb + 1, sizeof *d->saved);
   d->geom = calloc((size_t)m->ngeom + 1, sizeof *d->geom);
-  return d->gbody && d->glink && d->gcom && d->link_group && d->link_R && d->link_p && d->hinge &&
+  d->want_kin = calloc(nb, sizeof *d->want_kin);
+  d->vprev = calloc(nb, sizeof *d->vprev);
+  d->cpos = calloc(nb, sizeof *d->cpos);
+  d->cfb = calloc(ST_DYN_MAX_CFB, sizeof *d->cfb);
+  d->cfb_body = calloc(ST_DYN_MAX_CFB, sizeof *d->cfb_body);
+  d->cfb_side = calloc(ST_DYN_MAX_CFB, sizeof *d->cfb_side);
+  return d->want_kin && d->vprev && d->cpos && d->cfb && d->cfb_body && d->cfb_side && d->gbody && d->glink && d->gcom && d->link_group && d->link_R && d->link_p && d->hinge &&
          d->angle && d->vel && d->saved && d->geom;
 }
 
@@ -601,11 +669,24 @@ static void dyn_destroy(stWorld *w) {
   free(d->vel);
   free(d->saved);
   free(d->geom);
+  free(d->want_kin);
+  free(d->vprev);
+  free(d->cpos);
+  free(d->cfb);
+  free(d->cfb_body);
+  free(d->cfb_side);
   free(d);
   w->internal_ = NULL;
 }
 
 /* ---- contacts ---------------------------------------------------------------------------- */
+
+/* the group of body b when it is an adaptive joint's body, kinematic now; else -1 */
+static int adaptive_kin_body(const dynInternal *d, dBodyID b) {
+  if (!b || !d->nadapt) return -1;
+  const int g = (int)(intptr_t)dBodyGetData(b) - 1;
+  return g >= d->nkin0 && g < d->nkin ? g : -1;
+}
 
 /* narrow phase of one pair; with make, one contact joint per point. Returns 1 on contact.
  * ODE's colliders return at most the requested number of points, the first ones they find:
@@ -625,9 +706,25 @@ static int collide(dynInternal *d, dGeomID a, dGeomID b, int make, double mu, in
       c.surface.mu = mu;
       c.geom = d->cg[i];
       dBodyID b1 = dGeomGetBody(d->cg[i].g1), b2 = dGeomGetBody(d->cg[i].g2);
-      if ((!b1 || dBodyIsKinematic(b1)) && (!b2 || dBodyIsKinematic(b2))) continue; /* no effect */
+      const int a1 = adaptive_kin_body(d, b1), a2 = adaptive_kin_body(d, b2);
+      if ((!b1 || dBodyIsKinematic(b1)) && (!b2 || dBodyIsKinematic(b2))) { /* no effect */
+        /* an adaptive exact servo's body on the table: no force can tell its torque */
+        if (a1 >= 0 && a1 < d->kin_static_hit) d->kin_static_hit = a1;
+        if (a2 >= 0 && a2 < d->kin_static_hit) d->kin_static_hit = a2;
+        continue;
+      }
       dJointID j = dJointCreateContact(d->world, d->cgroup, &c);
       dJointAttach(j, b1, b2);
+      if (a1 >= 0 || a2 >= 0) {
+        if (d->ncfb < ST_DYN_MAX_CFB) {
+          dJointSetFeedback(j, &d->cfb[d->ncfb]);
+          d->cfb_body[d->ncfb] = a1 >= 0 ? a1 : a2;
+          d->cfb_side[d->ncfb] = a1 >= 0 ? 0 : 1;
+          d->ncfb++;
+        } else if ((a1 >= 0 ? a1 : a2) < d->kin_static_hit) {
+          d->kin_static_hit = a1 >= 0 ? a1 : a2; /* cannot be checked: make it dynamic */
+        }
+      }
       d->points[kind]++;
     }
   return n > 0;
@@ -858,6 +955,13 @@ static void robot_to_ode(stWorld *w) {
   prescribe_velocities(w, 0);
   for (int g = 0; g < d->ngroup; g++) dBodyEnable(d->gbody[g]);
   d->robot_dyn = 1;
+  for (int g = d->nkin0; g < d->nkin0 + d->nadapt; g++) { /* adaptive_joints: no jump */
+    const dReal *v = dBodyGetLinearVel(d->gbody[g]), *om = dBodyGetAngularVel(d->gbody[g]);
+    for (int k = 0; k < 3; k++) {
+      d->vprev[g][k] = v[k];
+      d->vprev[g][3 + k] = om[k];
+    }
+  }
 }
 
 /* ODE -> free motion: the measured angles become the state (with read; else d->angle already
@@ -890,6 +994,26 @@ static void read_state(stWorld *w) {
 }
 
 /* ---- reset ------------------------------------------------------------------------------- */
+
+/* dynamics.adaptive_joints: hinge i (an adaptive one) becomes an exact servo (on: joint disabled,
+ * body kinematic, its angle from now on d->angle: the measured one with read) or a bounded
+ * motor again; d->nkin counts the kinematic prefix (the caller keeps it a prefix) */
+static void set_kin(dynInternal *d, int i, int on, int read) {
+  dynHinge *hg = &d->hinge[i];
+  if (on == hg->kin) return;
+  if (on) {
+    if (read) d->angle[hg->link] = dJointGetHingeAngle(hg->j);
+    dJointDisable(hg->j);
+    dBodySetKinematic(d->gbody[i]);
+    d->nkin = i + 1;
+  } else {
+    dJointEnable(hg->j);
+    dBodySetDynamic(d->gbody[i]);
+    dJointSetHingeParam(hg->j, dParamVel, d->vel[i]);
+    d->nkin = i;
+  }
+  hg->kin = on;
+}
 
 /* the stops of a hinge at lo, hi; ODE ignores a low stop above the high one (and vice versa):
  * they are set in a safe order */
@@ -945,6 +1069,12 @@ static void reset_joints(dynInternal *d) {
   }
   for (int g = 0; g < d->ngroup; g++) dBodyEnable(d->gbody[g]);
   d->robot_dyn = 1;
+  for (int i = d->nkin0 + d->nadapt - 1; i >= d->nkin0; i--) set_kin(d, i, 0, 0);
+  for (int i = d->nkin0; i < d->nkin0 + d->nadapt; i++) set_kin(d, i, 1, 0);
+  for (int g = 0; g < d->ngroup; g++) {
+    d->want_kin[g] = 0;
+    for (int k = 0; k < 6; k++) d->vprev[g][k] = 0.0;
+  }
 }
 
 /* the per-trial counters, flags and quickstep's generator */
@@ -953,7 +1083,9 @@ static void reset_counters(dynInternal *d) {
   d->messages = 0;
   d->retries = 0;
   d->motor_redos = 0;
+  d->adapt_redos = 0;
   d->dyn_substeps = 0;
+  d->dyn_hinge_substeps = 0;
   memset(d->points, 0, sizeof d->points);
   d->unstable = 0;
   d->reason[0] = 0;
@@ -1103,6 +1235,131 @@ static int motors_check(dynInternal *d) {
   return 0;
 }
 
+/* dynamics.adaptive_joints, before a step: every adaptive hinge's anchor and axis, and the
+ * centre of mass of its body (the forces ODE reports act about it); the contact forces to come */
+static void adaptive_prepare(dynInternal *d) {
+  for (int i = d->nkin0; i < d->nkin0 + d->nadapt; i++) {
+    dynHinge *hg = &d->hinge[i];
+    dVector3 anc, ax;
+    dJointGetHingeAnchor(hg->j, anc);
+    dJointGetHingeAxis(hg->j, ax);
+    const dReal *x = dBodyGetPosition(d->gbody[i]);
+    for (int k = 0; k < 3; k++) {
+      hg->r1[k] = anc[k] - x[k];
+      hg->axis[k] = ax[k];
+      d->cpos[i][k] = x[k];
+    }
+  }
+}
+
+static void cross3(const double *a, const double *b, double *c) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* moment about point a of force f at point p plus torque t, added to m */
+static void add_moment(double *m, const double *a, const double *p, const dReal *f, const dReal *t) {
+  const double r[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]}, ff[3] = {f[0], f[1], f[2]};
+  double rf[3];
+  cross3(r, ff, rf);
+  for (int k = 0; k < 3; k++) m[k] += rf[k] + (t ? t[k] : 0.0);
+}
+
+/* the torque the motor of kinematic adaptive hinge j needed in the step just taken: Newton-Euler
+ * of the kinematic bodies it carries (bodies j .. nkin - 1, the chain), about its anchor along its
+ * axis, given their motion (velocity change since the previous sub-step), gravity, the forces of
+ * the hinges of their dynamic children and of their contacts (ODE's feedback) */
+static double adaptive_torque(const stWorld *w, const dynInternal *d, int j) {
+  const dynHinge *hj = &d->hinge[j];
+  double a[3], need[3] = {0, 0, 0}, ext[3] = {0, 0, 0};
+  for (int k = 0; k < 3; k++) a[k] = d->cpos[j][k] + hj->r1[k];
+  const double gz = -d->def.gravity;
+  for (int b = j; b < d->nkin; b++) {
+    dMass ms;
+    dBodyGetMass(d->gbody[b], &ms);
+    const dReal *v = dBodyGetLinearVel(d->gbody[b]), *om = dBodyGetAngularVel(d->gbody[b]);
+    const dReal *R = dBodyGetRotation(d->gbody[b]);
+    /* m (acc - g) at the centre; I alpha + om x I om, I in world axes: R I R^T */
+    const dReal f[3] = {ms.mass * (v[0] - d->vprev[b][0]) / d->h,
+                        ms.mass * (v[1] - d->vprev[b][1]) / d->h,
+                        ms.mass * ((v[2] - d->vprev[b][2]) / d->h - gz)};
+    double al[3], Iw[3], Io[3], tmp[3], tmp2[3];
+    for (int k = 0; k < 3; k++) al[k] = (om[k] - d->vprev[b][3 + k]) / d->h;
+    /* body-frame vectors: x_b = R^T x */
+    double alb[3], omb[3];
+    for (int r = 0; r < 3; r++) {
+      alb[r] = R[0 * 4 + r] * al[0] + R[1 * 4 + r] * al[1] + R[2 * 4 + r] * al[2];
+      omb[r] = R[0 * 4 + r] * om[0] + R[1 * 4 + r] * om[1] + R[2 * 4 + r] * om[2];
+    }
+    for (int r = 0; r < 3; r++) {
+      tmp[r] = ms.I[r * 4 + 0] * alb[0] + ms.I[r * 4 + 1] * alb[1] + ms.I[r * 4 + 2] * alb[2];
+      tmp2[r] = ms.I[r * 4 + 0] * omb[0] + ms.I[r * 4 + 1] * omb[1] + ms.I[r * 4 + 2] * omb[2];
+    }
+    for (int r = 0; r < 3; r++) {
+      Iw[r] = R[r * 4 + 0] * tmp[0] + R[r * 4 + 1] * tmp[1] + R[r * 4 + 2] * tmp[2];
+      Io[r] = R[r * 4 + 0] * tmp2[0] + R[r * 4 + 1] * tmp2[1] + R[r * 4 + 2] * tmp2[2];
+    }
+    const double omd[3] = {om[0], om[1], om[2]};
+    double gyro[3];
+    cross3(omd, Io, gyro);
+    const dReal t[3] = {Iw[0] + gyro[0], Iw[1] + gyro[1], Iw[2] + gyro[2]};
+    add_moment(need, a, d->cpos[b], f, t);
+  }
+  /* the dynamic children's hinges on these bodies (ODE's body 2 is the parent) */
+  const stModel *m = w->robot->model;
+  for (int i = d->nkin; i < d->nhinge; i++) {
+    const int pg = d->link_group[m->body_parent[d->hinge[i].link]];
+    if (pg >= j && pg < d->nkin) add_moment(ext, a, d->cpos[pg], d->hinge[i].fb.f2, d->hinge[i].fb.t2);
+  }
+  for (int c = 0; c < d->ncfb; c++) {
+    const int b = d->cfb_body[c];
+    if (b < j) continue;
+    const dJointFeedback *fb = &d->cfb[c];
+    add_moment(ext, a, d->cpos[b], d->cfb_side[c] ? fb->f2 : fb->f1, d->cfb_side[c] ? fb->t2 : fb->t1);
+  }
+  return (need[0] - ext[0]) * hj->axis[0] + (need[1] - ext[1]) * hj->axis[1] +
+         (need[2] - ext[2]) * hj->axis[2];
+}
+
+/* after a step: the first kinematic adaptive hinge that touched the table or needed more than
+ * adaptive_limit times its motor's limit becomes a bounded motor with every adaptive hinge after
+ * it (returns 1: the sub-step must be redone); else every dynamic adaptive hinge whose motor
+ * needed less than half that (and is off its stops) may become an exact servo at the next
+ * sub-step, and the velocities are kept for the next check */
+static int adaptive_check(const stWorld *w, dynInternal *d) {
+  int first = d->kin_static_hit < d->nhinge ? d->kin_static_hit : -1;
+  for (int j = d->nkin0; first < 0 && j < d->nkin; j++)
+    if (fabs(adaptive_torque(w, d, j)) > d->def.adaptive_limit * d->hinge[j].fmax) first = j;
+  if (first >= 0) {
+    for (int i = d->nkin - 1; i >= first; i--) set_kin(d, i, 0, 1);
+    return 1;
+  }
+  for (int i = d->nkin; i < d->nkin0 + d->nadapt; i++) {
+    const dynHinge *hg = &d->hinge[i];
+    const double a = dJointGetHingeAngle(hg->j);
+    d->want_kin[i] = fabs(motor_torque(hg)) < 0.5 * d->def.adaptive_limit * hg->fmax &&
+                     a > hg->lo_set && a < hg->hi_set;
+  }
+  for (int g = d->nkin0; g < d->nkin0 + d->nadapt; g++) {
+    const dReal *v = dBodyGetLinearVel(d->gbody[g]), *om = dBodyGetAngularVel(d->gbody[g]);
+    for (int k = 0; k < 3; k++) {
+      d->vprev[g][k] = v[k];
+      d->vprev[g][3 + k] = om[k];
+    }
+  }
+  return 0;
+}
+
+/* dynamics.adaptive_joints, at the start of a sub-step with the robot in ODE: the dynamic
+ * adaptive hinges that needed little torque (want_kin), in chain order, become exact servos */
+static void adaptive_update(dynInternal *d) {
+  while (d->nkin < d->nkin0 + d->nadapt && d->want_kin[d->nkin]) {
+    d->want_kin[d->nkin] = 0;
+    set_kin(d, d->nkin, 1, 1);
+  }
+}
+
 /* one ODE sub-step: contacts (flags ORed into c), then the stepper. ODE's direct solver can
  * fail on a degenerate set of contacts ("LCP internal error", reported through dMessage) and
  * then returns garbage: the sub-step is redone from the saved state with softer constraints
@@ -1115,10 +1372,14 @@ static int ode_substep(stWorld *w, stContacts *c) {
   const int mas = robot && d->def.motor_active_set && d->solver == ST_DYN_STEP;
   if (robot) save_bodies(d, d->saved);
   dSurfaceParameters surface = d->surface;
-  for (int attempt = 0, redo = 0;;) {
+  const int adapt = robot && d->nadapt;
+  for (int attempt = 0, redo = 0, aredo = 0;;) {
+    d->ncfb = 0;
+    d->kin_static_hit = d->nhinge;
     if (robot) collide_all(w, 1, c);
     else collide_object(w, 1, c);
     if (mas) motors_prepare(d);
+    if (adapt) adaptive_prepare(d);
     int ok;
     const unsigned long msg0 = st__ode_messages();
     if (d->solver == ST_DYN_QUICKSTEP) {
@@ -1137,6 +1398,12 @@ static int ode_substep(stWorld *w, stContacts *c) {
       dWorldSetCFM(d->world, d->def.cfm * pow(10.0, attempt + 1));
       d->retries++;
       attempt++;
+      continue;
+    }
+    if (ok && adapt && aredo <= d->nadapt && adaptive_check(w, d)) { /* a servo needed more */
+      restore_bodies(d, d->saved);
+      d->adapt_redos++;
+      aredo++;
       continue;
     }
     if (ok && mas && redo <= d->nhinge && motors_check(d)) { /* a motor saturated: bounded */
@@ -1170,11 +1437,13 @@ static int substep(stWorld *w, const double *y, stContacts *c) {
   servo(w, y);
   if (!d->robot_dyn && robot_near(w, d->def.contact_margin)) robot_to_ode(w);
   if (d->robot_dyn) {
+    if (d->nadapt) adaptive_update(d);
     for (int i = 0; i < d->nhinge; i++)
       if (!d->hinge[i].kin) dJointSetHingeParam(d->hinge[i].j, dParamVel, d->vel[i]);
     if (d->nkin) place_kinematic(w);
     speculative_stops(d, w->robot->max_velocity);
     d->dyn_substeps++;
+    d->dyn_hinge_substeps += d->nhinge - d->nkin;
   } else {
     for (int i = 0; i < d->nhinge; i++) d->angle[d->hinge[i].link] += d->vel[i] * d->h;
     st_robot_fk_angles(w->robot, d->angle, w->R, w->p);
@@ -1269,7 +1538,10 @@ static void dyn_info(const stWorld *w, stDynInfo *info) {
   info->solver_warnings = d->messages;
   info->solver_retries = d->retries;
   info->motor_redos = d->motor_redos;
+  info->adaptive_redos = d->adapt_redos;
+  info->adaptive_kinematic = d->nkin - d->nkin0;
   info->dyn_substeps = d->dyn_substeps;
+  info->dyn_hinge_substeps = d->dyn_hinge_substeps;
   info->robot_in_ode = d->robot_dyn;
   memcpy(info->contact_points, d->points, sizeof d->points);
 }
