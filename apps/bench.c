@@ -26,7 +26,8 @@
  * same-run before / after of a key). --rows prints, per scenario, what ODE's step solved: the
  * share of sub-steps with the robot in ODE, the contact points per such sub-step by pair kind
  * and the LCP rows (6 per hinge in ODE's step + 3 per contact point), and the sub-steps redone
- * by dynamics.motor_active_set and by dynamics.adaptive_joints. --only runs one scenario (for profiling). */
+ * by dynamics.motor_active_set and by dynamics.adaptive_joints. --only runs one scenario (for
+ * profiling). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -506,7 +507,8 @@ int main(int argc, char **argv) {
     st_net_decode(NULL, ST_ARCH_BASE, &g, &np[i], NULL, 0);
   }
   if (dynamic) {
-    int rc = bench_dynamic(p, baseline_set, baseline, threads, reps, trials, rows, only, np, NGENOME);
+    int rc =
+        bench_dynamic(p, baseline_set, baseline, threads, reps, trials, rows, only, np, NGENOME);
     free(np);
     st_protocol_destroy(p);
     return rc;

@@ -598,8 +598,9 @@ static int alloc_arrays(dynInternal *d, const stModel *m) {
   d->cfb = calloc(ST_DYN_MAX_CFB, sizeof *d->cfb);
   d->cfb_body = calloc(ST_DYN_MAX_CFB, sizeof *d->cfb_body);
   d->cfb_side = calloc(ST_DYN_MAX_CFB, sizeof *d->cfb_side);
-  return d->want_kin && d->vprev && d->cpos && d->cfb && d->cfb_body && d->cfb_side && d->gbody && d->glink && d->gcom && d->link_group && d->link_R && d->link_p && d->hinge &&
-         d->angle && d->vel && d->saved && d->geom;
+  return d->gbody && d->glink && d->gcom && d->link_group && d->link_R && d->link_p && d->hinge &&
+         d->angle && d->vel && d->saved && d->geom && d->want_kin && d->vprev && d->cpos &&
+         d->cfb && d->cfb_body && d->cfb_side;
 }
 
 /* the ODE world with its own threading implementation, its contact group and the parameters of
@@ -1259,7 +1260,8 @@ static void cross3(const double *a, const double *b, double *c) {
 }
 
 /* moment about point a of force f at point p plus torque t, added to m */
-static void add_moment(double *m, const double *a, const double *p, const dReal *f, const dReal *t) {
+static void add_moment(double *m, const double *a, const double *p, const dReal *f,
+                       const dReal *t) {
   const double r[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]}, ff[3] = {f[0], f[1], f[2]};
   double rf[3];
   cross3(r, ff, rf);
@@ -1310,13 +1312,15 @@ static double adaptive_torque(const stWorld *w, const dynInternal *d, int j) {
   const stModel *m = w->robot->model;
   for (int i = d->nkin; i < d->nhinge; i++) {
     const int pg = d->link_group[m->body_parent[d->hinge[i].link]];
-    if (pg >= j && pg < d->nkin) add_moment(ext, a, d->cpos[pg], d->hinge[i].fb.f2, d->hinge[i].fb.t2);
+    if (pg >= j && pg < d->nkin)
+      add_moment(ext, a, d->cpos[pg], d->hinge[i].fb.f2, d->hinge[i].fb.t2);
   }
   for (int c = 0; c < d->ncfb; c++) {
     const int b = d->cfb_body[c];
     if (b < j) continue;
     const dJointFeedback *fb = &d->cfb[c];
-    add_moment(ext, a, d->cpos[b], d->cfb_side[c] ? fb->f2 : fb->f1, d->cfb_side[c] ? fb->t2 : fb->t1);
+    const int two = d->cfb_side[c];
+    add_moment(ext, a, d->cpos[b], two ? fb->f2 : fb->f1, two ? fb->t2 : fb->t1);
   }
   return (need[0] - ext[0]) * hj->axis[0] + (need[1] - ext[1]) * hj->axis[1] +
          (need[2] - ext[2]) * hj->axis[2];
