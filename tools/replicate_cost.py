@@ -349,7 +349,7 @@ def main(argv):
         ap.add_argument("--%s-args" % k, default="")
     ap.add_argument("--prim-pop", default="data/evolved/prims_s2/population.genome")
     ap.add_argument("--chain-pop", default="data/evolved/chain_candidates/hcg_p2_from50/checkpoint")
-    ap.add_argument("--int-pop", default="data/evolved/int_%_s1/population.genome")
+    ap.add_argument("--int-pop", default="data/evolved/unchained/int_%_s1/population.genome")
     ap.add_argument("--sample", default="4")
     ap.add_argument("--remeasure", action="store_true")
     ap.add_argument("--eval-cost", default="build/eval_cost")
