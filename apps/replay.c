@@ -265,6 +265,18 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
 
 /* an integrated trial: what it heard, how it ended, its bonus and points (eq. 2.14) and, for a
  * prediction trial, its prediction score (whether or not its object reached the target) */
+
+/* integrated.fail_end other than penalty, appended to a trial's line (the default's line stays
+ * as it was): with exact, end=failure before the last step is the exact early end (the object
+ * out of reach for good, nothing left to change the result; sum_P then holds the object-moving
+ * penalty every remaining step was certain to pay) */
+static void fail_end_note(const stProtocol *p, char *ln, size_t lz) {
+  const size_t n = strlen(ln);
+  if (p->cfg.integrated_fail_end != ST_FAIL_END_PENALTY && n < lz)
+    snprintf(ln + n, lz - n, " fail_end=%s",
+             st_config_enum_name("integrated", "fail_end", p->cfg.integrated_fail_end));
+}
+
 static void replay_integrated(const stProtocol *p, int generation, int index, int trial,
                               const stNetParams *np, traceCtx *trace) {
   stIntegratedDef def;
@@ -294,6 +306,7 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
   if (plan.fitness == ST_FIT_PREDICTION && n > 0 && (size_t)n < lz)
     snprintf(ln + n, lz - (size_t)n, " reached=%d F_step=%.17g F_switch=%.17g B_pred=%.17g",
              r.reached_step >= 0, pred.f_step, pred.f_switch, pred.b_pred);
+  fail_end_note(p, ln, lz);
   printf("%s\n", ln);
   page_summary(trace, "integrated trial %d (posture %d, words: %s)", trial, trial % ST_NPOSTURE,
                st_word_source_name(plan.words));
@@ -329,6 +342,7 @@ static void replay_posteval(const stProtocol *p, stPostTest test, int caretaker,
            "open_jumped=%d", trial, st_post_test_name(test), t.type, t.cell, t.posture,
            t.repetition, st_word_source_name(words), r.heard, r.success, r.reached_step,
            r.steps_run, t.steps, st_trial_end_name((stTrialEnd)r.end), r.open_jumped);
+  fail_end_note(p, trace->line, sizeof trace->line);
   printf("%s\n", trace->line);
   page_summary(trace, "%s test trial %d (posture %d, words: %s)", st_post_test_name(test), trial,
                t.posture, st_word_source_name(words));

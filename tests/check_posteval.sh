@@ -284,5 +284,37 @@ if [ $? = 2 ] && grep -q "output directory '$tmp/afile/sub': cannot create" "$tm
   ok "an output directory that cannot be made"
 else ko "unwritable output" "$(cat "$tmp/e")"; fi
 
+# ---- integrated.fail_end = exact against runout (PROTOCOL, "Speed"): the chain candidate whose
+# chains drop the ball, with no words and with the caretaker; every column of trials.csv but end
+# and steps_run (what was simulated: a run-out world may diverge after exact's end) agrees, and
+# exact simulates fewer steps
+hcg=data/evolved/chain_candidates/hcg_p2_s1
+for v in nowords:--no-words caretaker:; do
+  name=${v%%:*} flag=${v#*:}
+  for m in exact runout; do
+    "$PE" integration "$hcg/integration/config.ini" "$hcg/checkpoint" $flag --threads 2 \
+      --out "$tmp/fe-$name-$m" --set posteval.integration_top=3 --set posteval.integration_trials=12 \
+      --set integrated.fail_end=$m > /dev/null 2> "$tmp/e" || ko "fail_end=$m $name" "$(tail -2 "$tmp/e")"
+  done
+  if python3 - "$tmp/fe-$name-exact/trials.csv" "$tmp/fe-$name-runout/trials.csv" <<'PY'
+import csv, sys
+x, r = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+assert len(x) == len(r) == 36, (len(x), len(r))
+for a, b in zip(x, r):
+    for k in a:
+        if k not in ("end", "steps_run"): assert a[k] == b[k], (k, a, b)
+    # run out, a trial ends only by success or by its world diverging (which exact may not
+    # have reached: it ended earlier, once nothing the row reports could change)
+    assert a["end"] == b["end"] or a["end"] == "failure" and b["end"] == "full", (a, b)
+    assert int(a["steps_run"]) <= int(b["steps_run"]), (a, b)
+early = sum(int(a["steps_run"]) < int(b["steps_run"]) for a, b in zip(x, r))
+sx, sr = (sum(int(t["steps_run"]) for t in f) for f in (x, r))
+print(f"{early} early ends, steps {sx} of {sr}")
+assert sx < sr and early > 0
+PY
+  then ok "integrated.fail_end=exact against runout, $name: the same rows, fewer steps"
+  else ko "integrated.fail_end=exact against runout, $name"; fi
+done
+
 echo "check_posteval: $pass passed, $fail failed"
 [ "$fail" = 0 ]

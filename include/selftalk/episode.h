@@ -37,7 +37,15 @@ typedef struct stProtocol {
   stNetDef net;
   double posture[ST_NPRIM][ST_NPOSTURE][ST_NDOF];
   unsigned primitives; /* stage.primitives: bit p set = primitive p's trials are evaluated */
+  /* integrated.fail_end = exact or runout: the lowest the robot's geometry and its palm frame
+   * reach (st_robot_lowest_z, joint ranges widened by dynamics.limit_tolerance_deg); -inf with
+   * penalty, so that nothing is ever out of reach */
+  double reach_geom_z, reach_palm_z;
 } stProtocol;
+
+/* What the margin of an out-of-reach object covers: ODE's contact correction, which can lift
+ * the object a little above its energy bound, and the dynamic joints' separation (m). */
+#define ST_REACH_MARGIN 0.02
 
 /* Loads the robot, computes the 16 postures. */
 stStatus st_protocol_create(const stConfig *cfg, stProtocol **protocol, char *err, size_t errsz);
@@ -155,6 +163,14 @@ typedef struct stTraceStep {
   double pen_object;        /* object touching, */
   double pen_moving;        /* object moving (SPEC §6) */
   int fell, unstable;       /* what the world reports */
+  int out_of_reach;         /* the object can never again touch the robot, nor come within
+                               fitness.success_dist of its palm's reach point (d_r), whatever
+                               the controller does: its energy bound (st_world_object_ceiling)
+                               plus ST_REACH_MARGIN stays below the protocol's reach_*_z; 0
+                               with integrated.fail_end = penalty */
+  double pen_moving_floor;  /* the least object-moving penalty any later step can have while
+                               the object is not lifted: fitness.move_max once its energy
+                               bound keeps it move_max x move_scale below its start, else 0 */
   /* filled by the scorer */
   double S, P;
   int success_now;

@@ -40,6 +40,7 @@ typedef struct stIntegratedDef {
   int steps;                   /* 240 */
   int hold_steps;              /* 20 */
   int focus_bonus_steps;       /* 3 */
+  int fail_end;                /* integrated.fail_end: ST_FAIL_END_PENALTY, _EXACT, _RUNOUT */
   stPredDef pred;
 } stIntegratedDef;
 
@@ -87,9 +88,19 @@ typedef struct stIntTrialResult {
   int opened;            /* the open success condition held at some step */
   int furthest_word;     /* the furthest primitive (ST_PRIM_*) whose word was heard, -1 none:
                             with the caretaker's words, how far its chain got */
-  stTrialEnd end;
+  stTrialEnd end;        /* failure: the object fell (integrated.fail_end = penalty), the world
+                            diverged, or (exact) nothing left could change the result */
   int unstable;
 } stIntTrialResult;
+
+/* What a trial reports besides its reach, bonuses and success, which an exact early end
+ * (integrated.fail_end = exact, st_int_score_settle) must leave as running out would: */
+enum {
+  ST_INT_KEEP_POINTS = 1u, /* max(0, sum S - sum P): the integrated fitness's trials */
+  ST_INT_KEEP_RECORD = 2u, /* the words and outputs of a prediction trial (they count once its
+                              object reached the target) */
+  ST_INT_KEEP_WORDS = 4u   /* the words heard (posteval's heard): self talk can still change */
+};
 
 /* The scorer's state; st_int_score_begin, st_int_score_step after every step, st_int_score_end. */
 typedef struct stIntScore {
@@ -99,6 +110,9 @@ typedef struct stIntScore {
   int focus_run;         /* consecutive steps lifted with the focus on the target */
   int was_in_target;
   int lifted;
+  int fail_end;          /* ST_FAIL_END_* (def->fail_end) */
+  unsigned keep;         /* ST_INT_KEEP_* (the caller's, after st_int_score_begin) */
+  double fill_p;         /* failure: P of every remaining step */
   stIntTrialResult r;
 } stIntScore;
 
@@ -107,12 +121,24 @@ void st_int_score_begin(stIntScore *sc, const stFitnessDef *fd, double focus_thr
 
 /* Scores the state after step `step`: writes S, P (nullable) and returns the stTrialEnd that
  * ends the trial here (success: within the target radius while lifted more than hold_steps
- * steps ago and still lifted; failure: the object fell or the world diverged), or -1. */
+ * steps ago and still lifted; failure: the world diverged, or the object fell with
+ * integrated.fail_end = penalty), or -1. */
 int st_int_score_step(stIntScore *sc, int step, const stQuantities *q, double y_focus,
                       double pen_table, double pen_moving, int fell, int unstable, double *S,
                       double *P);
 
-/* Fills the remainder (success: S = 1; failure: P = fitness.fail_penalty per step). */
+/* integrated.fail_end = exact, after st_int_score_step returned -1: ST_END_FAILURE when no
+ * remaining step can change what the trial reports, else -1. That needs the object out of the
+ * robot's reach for good (out_of_reach: no touch, so never lifted again: no reach, bonus or
+ * success, and d_r stays above fitness.success_dist: no "opened", no caretaker switch) and, as
+ * sc->keep asks, points certain to be clamped to 0 (each remaining step adds S <= w + (1 - w) / 2
+ * - pen_moving_floor, or -fitness.fail_penalty should the world diverge), a prediction record
+ * that does not count (no reach yet), words that cannot change (words_fixed: not self talk). */
+int st_int_score_settle(stIntScore *sc, int out_of_reach, double pen_moving_floor,
+                        int words_fixed);
+
+/* Fills the remainder (success: S = 1; failure: P = fitness.fail_penalty per step, or, ended by
+ * st_int_score_settle, the object-moving penalty every remaining step is certain to pay). */
 void st_int_score_end(stIntScore *sc, stIntTrialResult *r);
 
 /* A trial's bonus: (focus bonus + move bonus) x bonus x factor. */
@@ -174,6 +200,7 @@ typedef struct stIntRecord {
 typedef struct stIntScorer {
   const stProtocol *p;
   const stIntegratedDef *def;
+  unsigned keep;         /* ST_INT_KEEP_*: st_int_scorer sets POINTS, or RECORD with a record */
   stIntScore sc;
   stIntTrialResult *r;
   stIntRecord *rec;

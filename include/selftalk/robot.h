@@ -90,6 +90,15 @@ void st_robot_fk_angles(const stRobot *r, const double *angle, double (*R)[9], d
 void st_robot_point_local(const double R[9], const double p[3], const double world[3],
                           double local[3]);
 
+/* A lower bound on the height (world z) that any collision geometry of the robot (*geom_z)
+ * and its palm frame's origin (*palm_z) can reach with every revolute joint within its range
+ * (as qhat maps it) widened by tol rad on each side, whatever the joints do: the first
+ * revolute joints of the chain (up to three) on a grid with the Lipschitz bound of its cells,
+ * the rest by the triangle inequality over the joint offsets (so not the minimum, a bound).
+ * Static geometry counts too: a resting object touching it would be "touched by the robot".
+ * Takes some 10-100 ms: computed once per protocol, where an exact early end needs it. */
+void st_robot_lowest_z(const stRobot *r, double tol, double *geom_z, double *palm_z);
+
 /* Joint angle of every body (rad, 0 for fixed joints) for normalised DOF positions. */
 void st_robot_angles(const stRobot *r, const double *qhat, double *angle);
 

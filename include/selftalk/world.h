@@ -203,6 +203,13 @@ void st_world_set_object_table_collision(stWorld *w, int on);
  * it is outside the table's x/y extent and below the table top. 0 in kinematic mode. */
 int st_world_object_fell(const stWorld *w);
 
+/* An upper bound on the height of the object's centre from now on for as long as no robot part
+ * touches it: its height plus its kinetic energy (linear and rotational) over m g. Gravity,
+ * the floor and the table cannot lift it higher (no restitution: contacts do not bounce;
+ * ODE's contact correction can add a little, which the caller's margin must cover).
+ * +inf in kinematic mode or without gravity. */
+double st_world_object_ceiling(const stWorld *w);
+
 /* 1 when the simulation diverged (NaN or infinite values, a body faster than unstable_speed or
  * unstable_spin, a joint beyond its range by more than limit_tolerance, a non-finite
  * command): the caller must end the trial as a failure (the world stays frozen until the next

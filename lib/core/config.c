@@ -165,6 +165,9 @@ static const stageKey g_stage_keys[] = {
      "the generalisation test's trials last posteval.generalisation_steps"},
     {"integrated", "words_*", I_ | PR_ | PG_, "it defines the integrated stage",
      "the integration test always hears the caretaker"},
+    {"integrated", "fail_end", I_ | P_, "the primitive stages' own trials end on failure by "
+                                        "main-prim's rule (its chained trials read it: "
+                                        "stage.chain_trials)", NULL},
     {"integrated", "first_generation", I_ | PG_, "it defines the integrated stage",
      "only the generalisation test's exclusion rule reads the training's plan (which trials were "
      "autonomous in the last generation)"},
@@ -629,13 +632,13 @@ static void short_real(double v, char *buf, size_t n) {
 
 /* readers that depend on another key's value: main-prim's hand-over trials (stage.handover)
  * and chained trials (stage.chain_trials) hear the caretaker; its chained trials are
- * integrated trials (their length, hold and focus bonus) */
+ * integrated trials (their length, hold, focus bonus and failure end) */
 static unsigned value_readers(const stConfig *cfg, const stConfigKey *k) {
   const int chain = cfg->stage_chain_trials > 0;
   if ((cfg->stage_handover || chain) && !strcmp(k->section, "caretaker")) return ST_CONFIG_MAIN_PRIM;
   if (chain && !strcmp(k->section, "integrated") &&
       (!strcmp(k->name, "steps") || !strcmp(k->name, "hold_steps") ||
-       !strcmp(k->name, "focus_bonus_steps")))
+       !strcmp(k->name, "focus_bonus_steps") || !strcmp(k->name, "fail_end")))
     return ST_CONFIG_MAIN_PRIM;
   return 0u;
 }

@@ -2,6 +2,7 @@
  * The one episode loop (selftalk/episode.h). */
 #include "selftalk/episode.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -38,6 +39,10 @@ stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, si
   st_fitness_def_from_config(cfg, &p->fitness);
   p->net = st_net_def_from_config(cfg);
   p->primitives = st_config_primitive_mask(cfg);
+  p->reach_geom_z = p->reach_palm_z = -INFINITY;
+  if (cfg->integrated_fail_end != ST_FAIL_END_PENALTY) /* runout: traced, for the proof */
+    st_robot_lowest_z(p->robot, cfg->dynamics_limit_tolerance_deg * ST_DEG, &p->reach_geom_z,
+                      &p->reach_palm_z);
   if ((st = st_postures_all(p->robot, &p->scene, p->posture, err, errsz)) ||
       (st = check_dynamics(p, err, errsz))) {
     st_protocol_destroy(p);
@@ -196,6 +201,21 @@ static int heard_word(hearing *h, const stProtocol *p, const stWords *words, int
   }
 }
 
+/* what no later step can undo (stTraceStep.out_of_reach, pen_moving_floor): the object's
+ * energy bound against how low the robot reaches and how far the object is from its start */
+static void future(const stProtocol *p, const stWorld *w, stTraceStep *s) {
+  const stScene *sc = &p->scene;
+  const double top = st_world_object_ceiling(w) + ST_REACH_MARGIN;
+  if (!(top < INFINITY)) return;
+  /* the object's extent about its centre: the sphere, or the rim of its flattened base */
+  const double extent = sc->base_height > 0.0 ? hypot(sc->obj_radius, sc->base_radius) : sc->obj_radius;
+  s->out_of_reach = top + extent < p->reach_geom_z &&
+                    top + p->sensor.reach_height + p->fitness.success_dist < p->reach_palm_z;
+  /* below its start by D, its distance from the start is at least D: the penalty's cap */
+  const double D = fmax(p->sensor.move_free, p->sensor.move_max * p->sensor.move_scale);
+  if (top + D <= w->obj_start[2]) s->pen_moving_floor = p->sensor.move_max;
+}
+
 /* the state after the action, for the scorer */
 static void observe(const stProtocol *p, const stWorld *w, stTraceStep *s) {
   s->pen_table = st_penalty_table(w, &p->sensor);
@@ -203,6 +223,9 @@ static void observe(const stProtocol *p, const stWorld *w, stTraceStep *s) {
   s->pen_moving = st_penalty_moving(w, &p->sensor);
   s->fell = st_world_object_fell(w);
   s->unstable = st_world_unstable(w);
+  s->out_of_reach = 0;
+  s->pen_moving_floor = 0.0;
+  if (p->reach_geom_z > -INFINITY) future(p, w, s);
   s->S = s->P = 0.0;
   s->success_now = 0;
   s->event = -1;

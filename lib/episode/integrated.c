@@ -46,6 +46,7 @@ stWords st_int_words(const stProtocol *p, stWordSource source) {
 static void int_begin(void *self) {
   stIntScorer *s = self;
   st_int_score_begin(&s->sc, &s->p->fitness, s->p->sensor.focus_threshold, s->def);
+  s->sc.keep = s->keep;
   if (s->rec) s->rec->n = 0;
 }
 
@@ -60,12 +61,17 @@ static void record(stIntRecord *rec, const stTraceStep *ts) {
 
 static int int_step(void *self, stTraceStep *ts) {
   stIntScorer *s = self;
-  const int event = st_int_score_step(&s->sc, ts->step, ts->q, ts->out[ST_NET_OUT_FOCUS],
-                                      ts->pen_table, ts->pen_moving, ts->fell, ts->unstable,
-                                      &ts->S, &ts->P);
+  int event = st_int_score_step(&s->sc, ts->step, ts->q, ts->out[ST_NET_OUT_FOCUS],
+                                ts->pen_table, ts->pen_moving, ts->fell, ts->unstable, &ts->S,
+                                &ts->P);
   ts->success_now = ts->q->lifted && ts->q->d_m < s->p->fitness.target_radius;
   if (ts->word > s->sc.r.furthest_word) s->sc.r.furthest_word = ts->word;
   record(s->rec, ts);
+  /* the caretaker's word cannot move on once the object is out of reach (its switches need the
+   * palm near it or a touch); self talk's labels are the controller's */
+  if (event < 0)
+    event = st_int_score_settle(&s->sc, ts->out_of_reach, ts->pen_moving_floor,
+                                ts->source != ST_WORDS_SELFTALK);
   return event;
 }
 
@@ -82,6 +88,8 @@ stScorer st_int_scorer(stIntScorer *s, const stProtocol *p, const stIntegratedDe
   s->def = def;
   s->r = r;
   s->rec = rec;
+  /* a prediction trial's points are not in its fitness; its record is, once reached */
+  s->keep = rec ? ST_INT_KEEP_RECORD : ST_INT_KEEP_POINTS;
   stScorer sc = {int_begin, int_step, int_end, s};
   return sc;
 }

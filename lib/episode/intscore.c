@@ -31,6 +31,7 @@ void st_integrated_def_from_config(const stConfig *c, stIntegratedDef *d) {
   d->steps = c->integrated_steps;
   d->hold_steps = c->integrated_hold_steps;
   d->focus_bonus_steps = c->integrated_focus_bonus_steps;
+  d->fail_end = c->integrated_fail_end;
   st_pred_def_from_config(c, &d->pred);
 }
 
@@ -92,6 +93,9 @@ void st_int_score_begin(stIntScore *sc, const stFitnessDef *fd, double focus_thr
   sc->steps = def->steps;
   sc->hold_steps = def->hold_steps;
   sc->focus_bonus_steps = def->focus_bonus_steps;
+  sc->fail_end = def->fail_end;
+  sc->keep = ST_INT_KEEP_POINTS;
+  sc->fill_p = fd->fail_penalty;
   sc->r.reached_step = -1;
   sc->r.furthest_word = -1;
 }
@@ -121,7 +125,9 @@ int st_int_score_step(stIntScore *sc, int step, const stQuantities *q, double y_
   if (S_out) *S_out = S;
   if (P_out) *P_out = P;
   int event = -1;
-  if (unstable || fell) {
+  /* a diverged world is frozen (st_world_unstable): it has no rest to run out, so every mode
+   * ends it by the penalty rule; a fall ends the trial only by that rule */
+  if (unstable || (fell && sc->fail_end == ST_FAIL_END_PENALTY)) {
     r->unstable = unstable;
     event = ST_END_FAILURE;
   } else if (r->reached_step >= 0 && step - r->reached_step > sc->hold_steps && q->lifted) {
@@ -131,12 +137,38 @@ int st_int_score_step(stIntScore *sc, int step, const stQuantities *q, double y_
   return event;
 }
 
+int st_int_score_settle(stIntScore *sc, int out_of_reach, double pen_moving_floor,
+                        int words_fixed) {
+  ST_ASSERT(sc && pen_moving_floor >= 0.0);
+  stIntTrialResult *r = &sc->r;
+  const long rem = sc->steps - r->steps_run;
+  if (sc->fail_end != ST_FAIL_END_EXACT || !out_of_reach || rem <= 0) return -1;
+  if ((sc->keep & ST_INT_KEEP_RECORD) && r->reached_step >= 0) return -1;
+  if ((sc->keep & ST_INT_KEEP_WORDS) && !words_fixed) return -1;
+  if (sc->keep & ST_INT_KEEP_POINTS) {
+    /* never touched again, S = w f_f + (correct ? (1 - w) s_i : 0) with f_f = 1 - y <= 1 and
+     * s_i = s_m / 2 + stage / 4 <= 0 + 2 / 4 (s_m: no touch, no lift; s_o, s_g <= 1), and P >=
+     * the moving penalty's floor (the table's >= 0); should the world diverge at a later step,
+     * the rest pays fail_penalty. The sum over the rest is linear in the step it diverges at,
+     * so both ends bound it. The margin is far above the rounding of the two sums (< N^2 x 200
+     * x 2^-52 for N <= 1e5 steps). */
+    const double w = sc->fd->focus_weight, smax = w + 0.5 * (1.0 - w);
+    const double cur = r->sum_s - r->sum_p, margin = 1e-6 * (double)sc->steps;
+    if (!(cur + (double)rem * (smax - pen_moving_floor) <= -margin &&
+          cur - (double)rem * sc->fd->fail_penalty <= -margin))
+      return -1;
+  }
+  r->end = ST_END_FAILURE;
+  sc->fill_p = pen_moving_floor; /* what every remaining step is certain to pay */
+  return ST_END_FAILURE;
+}
+
 void st_int_score_end(stIntScore *sc, stIntTrialResult *out) {
   ST_ASSERT(sc && out);
   stIntTrialResult *r = &sc->r;
   const long remaining = sc->steps - r->steps_run;
   if (r->end == ST_END_SUCCESS) r->sum_s += (double)remaining;
-  if (r->end == ST_END_FAILURE) r->sum_p += sc->fd->fail_penalty * (double)remaining;
+  if (r->end == ST_END_FAILURE) r->sum_p += sc->fill_p * (double)remaining;
   r->steps = sc->steps;
   r->success = r->end != ST_END_FAILURE && sc->was_in_target && sc->lifted;
   *out = *r;

@@ -295,3 +295,110 @@ void st_robot_fk(const stRobot *r, const double *qhat, double (*R)[9], double (*
   st_robot_fk_angles(r, a, R, p);
   if (a != angle) free(a);
 }
+
+/* ---- how low the robot reaches (st_robot_lowest_z) ---- */
+
+static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+/* radius of the sphere about geometry g's origin that holds it */
+static double geom_radius(const stModel *m, int g) {
+  const double *s = m->geom_size[g];
+  switch (m->geom_type[g]) {
+    case ST_GEOM_SPHERE: return s[0];
+    case ST_GEOM_BOX: return 0.5 * norm3(s);
+    case ST_GEOM_CYLINDER: return sqrt(s[0] * s[0] + 0.25 * s[1] * s[1]);
+    default: {
+      double r = 0.0;
+      for (int v = 0; v < m->geom_nvert[g]; v++) r = fmax(r, norm3(m->mesh_vert[m->geom_vert0[g] + v]));
+      return r;
+    }
+  }
+}
+
+enum { LOW_GRID_JOINTS = 3, LOW_GRID_POINTS = 110592 /* 48^3 */ };
+
+void st_robot_lowest_z(const stRobot *r, double tol, double *geom_z, double *palm_z) {
+  ST_ASSERT(r && geom_z && palm_z && tol >= 0.0);
+  const stModel *m = r->model;
+  const int nb = m->nbody;
+  /* per body: revolute joints from the root to it (its own included), the sum of the joint
+   * offsets from the root (|p_b - p_a| <= cum[b] - cum[a] for an ancestor a, any angles) */
+  int *nrev = calloc((size_t)nb, sizeof *nrev), *anchor = calloc((size_t)nb, sizeof *anchor);
+  double *cum = calloc((size_t)nb, sizeof *cum), *zmin = calloc((size_t)nb, sizeof *zmin);
+  double *err = calloc((size_t)nb, sizeof *err), *angle = calloc((size_t)nb, sizeof *angle);
+  double(*R)[9] = malloc(sizeof *R * (size_t)nb);
+  double(*p)[3] = malloc(sizeof *p * (size_t)nb);
+  if (!nrev || !anchor || !cum || !zmin || !err || !angle || !R || !p) {
+    *geom_z = *palm_z = -INFINITY; /* no bound: nothing is ever out of reach */
+    goto done;
+  }
+  for (int b = 1; b < nb; b++) {
+    const int pb = m->body_parent[b];
+    nrev[b] = nrev[pb] + (m->jnt_type[b] == ST_JOINT_REVOLUTE);
+    cum[b] = cum[pb] + norm3(m->jnt_pos[b]);
+  }
+  /* the grid's joints: those with at most ng revolute joints up to them, at most three (a
+   * chain's first three; fewer where the tree branches early) */
+  int ng = LOW_GRID_JOINTS, grid[LOW_GRID_JOINTS], nj = 0;
+  for (;; ng--) {
+    nj = 0;
+    for (int b = 1; b < nb; b++)
+      if (m->jnt_type[b] == ST_JOINT_REVOLUTE && nrev[b] <= ng) {
+        if (nj < LOW_GRID_JOINTS) grid[nj] = b;
+        nj++;
+      }
+    if (nj <= LOW_GRID_JOINTS || ng == 0) break;
+  }
+  if (nj > LOW_GRID_JOINTS) nj = 0;
+  /* a body's anchor: its deepest ancestor (or itself) whose origin only the grid's joints move
+   * (every revolute joint above its own has nrev <= ng) */
+  for (int b = 0; b < nb; b++) {
+    int a = b;
+    while (a > 0 && nrev[m->body_parent[a]] > ng) a = m->body_parent[a];
+    anchor[b] = a;
+    zmin[b] = INFINITY;
+  }
+  int cells = 1;
+  while (nj > 0 && (long)(cells + 1) * (nj > 1 ? cells + 1 : 1) * (nj > 2 ? cells + 1 : 1) <= LOW_GRID_POINTS)
+    cells++;
+  double lo[LOW_GRID_JOINTS], h[LOW_GRID_JOINTS];
+  for (int j = 0; j < nj; j++) {
+    lo[j] = r->body_range[grid[j]][0] - tol;
+    h[j] = (r->body_range[grid[j]][1] + tol - lo[j]) / cells;
+  }
+  long total = 1;
+  for (int j = 0; j < nj; j++) total *= cells;
+  for (long i = 0; i < total; i++) { /* cell centres */
+    long k = i;
+    for (int j = 0; j < nj; j++, k /= cells) angle[grid[j]] = lo[j] + ((double)(k % cells) + 0.5) * h[j];
+    st_robot_fk_angles(r, angle, R, p);
+    for (int b = 0; b < nb; b++)
+      if (anchor[b] == b && p[b][2] < zmin[b]) zmin[b] = p[b][2];
+  }
+  /* within a cell an anchor's origin moves at most sum over the grid's joints above it of
+   * |d p / d angle| * h / 2 <= (cum[a] - cum[joint's body]) * h / 2 (the joint's axis passes
+   * through its body's origin) */
+  for (int b = 0; b < nb; b++) {
+    if (anchor[b] != b) continue;
+    for (int j = 0; j < nj; j++)
+      for (int a = b; a > 0; a = m->body_parent[a])
+        if (a == grid[j]) err[b] += (cum[b] - cum[a]) * 0.5 * h[j];
+  }
+  *geom_z = INFINITY;
+  for (int g = 0; g < m->ngeom; g++) {
+    const int b = m->geom_body[g], a = anchor[b];
+    const double z = zmin[a] - err[a] - (cum[b] - cum[a]) - norm3(m->geom_pos[g]) - geom_radius(m, g);
+    if (z < *geom_z) *geom_z = z;
+  }
+  const int a = anchor[r->palm_body];
+  *palm_z = zmin[a] - err[a] - (cum[r->palm_body] - cum[a]);
+done:
+  free(nrev);
+  free(anchor);
+  free(cum);
+  free(zmin);
+  free(err);
+  free(angle);
+  free(R);
+  free(p);
+}

@@ -296,6 +296,7 @@ stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stW
   postScorer ps;
   memset(&ps, 0, sizeof ps);
   ps.inner = st_int_scorer(&ps.is, p, &def, &ps.ir, NULL);
+  ps.is.keep = ST_INT_KEEP_WORDS; /* no fitness: success, its step and the words heard */
   ps.r = r;
   const stScorer sc = {post_begin, post_step, post_end, &ps};
   return st_episode_run(p, ws, &e, ctl, &w, &sc, trace, ctx, err, errsz);

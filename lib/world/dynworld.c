@@ -1524,6 +1524,21 @@ static int dyn_object_fell(const stWorld *w) {
   return off && o[2] < s->table_top_z;
 }
 
+static double dyn_object_ceiling(const stWorld *w) {
+  const dynInternal *d = w->internal_;
+  if (!(d->def.gravity > 0.0) || d->unstable) return INFINITY;
+  dMass ms;
+  dBodyGetMass(d->ball, &ms);
+  const dReal *v = dBodyGetLinearVel(d->ball), *o = dBodyGetAngularVel(d->ball);
+  dVector3 ob; /* the spin in the body frame, where the inertia is */
+  dBodyVectorFromWorld(d->ball, o[0], o[1], o[2], ob);
+  double rot = 0.0;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) rot += ob[i] * ms.I[4 * i + j] * ob[j];
+  const double ke = 0.5 * ms.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * rot;
+  return w->obj[2] + ke / (ms.mass * d->def.gravity);
+}
+
 static int dyn_unstable(const stWorld *w) { return ((const dynInternal *)w->internal_)->unstable; }
 
 static const char *dyn_unstable_reason(const stWorld *w) {
@@ -1571,6 +1586,7 @@ static const stWorldBackend dyn_backend = {
     .set_seed = dyn_set_seed,
     .set_object_table_collision = dyn_set_object_table_collision,
     .object_fell = dyn_object_fell,
+    .object_ceiling = dyn_object_ceiling,
     .unstable = dyn_unstable,
     .unstable_reason = dyn_unstable_reason,
     .info = dyn_info,

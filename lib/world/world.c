@@ -124,6 +124,11 @@ int st_world_object_fell(const stWorld *w) {
   return backend(w)->object_fell ? backend(w)->object_fell(w) : 0;
 }
 
+double st_world_object_ceiling(const stWorld *w) {
+  ST_ASSERT(w);
+  return backend(w)->object_ceiling ? backend(w)->object_ceiling(w) : INFINITY;
+}
+
 int st_world_unstable(const stWorld *w) {
   return backend(w)->unstable ? backend(w)->unstable(w) : 0;
 }

@@ -29,6 +29,7 @@ typedef struct stWorldBackend {
   void (*set_seed)(stWorld *w, uint64_t key);
   void (*set_object_table_collision)(stWorld *w, int on);
   int (*object_fell)(const stWorld *w);
+  double (*object_ceiling)(const stWorld *w);
   int (*unstable)(const stWorld *w);
   const char *(*unstable_reason)(const stWorld *w);
   void (*info)(const stWorld *w, stDynInfo *info);
