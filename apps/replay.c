@@ -20,6 +20,15 @@
  * comparing runs, and the golden results of tests/check_golden.sh) instead of 9.
  * --force overrides network output OUT (0..11 the DOF of SPEC §3, 12 focus) with VALUE (0..1)
  * from step STEP on (default 0): what the individual would do with, e.g., its thumb opposed.
+ * --rollin FILE [--rollin-index I] (a main-prim config with stage.handover_rollin = elite, a
+ * hand-over trial K = 16..27; required there, refused elsewhere): the genotype of FILE whose
+ * base network acts the roll-in, the generation's elite (its genotype 0), as evolve had it.
+ * Without --rollin-index: in a file of per-generation bests, the record of generation G - 1
+ * (the GA copies the previous generation's best to genotype 0; not so at a stage's first
+ * generation, nor at generation 0, whose elite is the initial population's first genotype:
+ * give that file); otherwise its first genotype (a checkpoint's population is the generation's
+ * own, genotype 0 its elite). Forced outputs apply to the individual, which acts from the
+ * hand-over on.
  *
  * --posteval TEST (integration, robustness, generalisation) replays trial K of that
  * post-evaluation's table instead (posteval's trial numbering, its random streams: the trial
@@ -221,8 +230,8 @@ static void page_summary(traceCtx *c, const char *fmt, ...) {
  * with main-prim's hand-over trials); traced
  * into trace->csv.f when not NULL */
 static void replay_primitive(const stProtocol *p, stStage stage, int generation, int index,
-                             int trial, const stNetParams *np, const stForce *force, int nforce,
-                             traceCtx *trace) {
+                             int trial, const stNetParams *np, const stNetParams *rollin,
+                             const stForce *force, int nforce, traceCtx *trace) {
   stTrialSpec t;
   st_trial_spec(p, stage, generation, trial, &t);
   if (t.start_draws)
@@ -234,7 +243,7 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
   char err[1024];
   const uint64_t key = st_trial_seed_key(p, generation, index, trial);
   const stTraceFn fn = trace->csv.f || trace->shapes || trace->page ? on_step : NULL;
-  if (st_trial_run_forced(p, &ws, &t, np, force, nforce, key, &r, fn, trace, err, sizeof err))
+  if (st_trial_run_rollin(p, &ws, &t, np, rollin, force, nforce, key, &r, fn, trace, err, sizeof err))
     app_die(prog, "%s", err);
   st_workspace_free(&ws);
   long n_p = 0; /* the primitive's trials, hand-over trials included */
@@ -364,12 +373,33 @@ static int pick_index(const stGenomeSet *set, const char *genome, int generation
           generation, genome, set->generation[0], set->generation[set->count - 1]);
 }
 
+/* --rollin FILE: the elite that acts a hand-over trial's roll-in (see the header comment) */
+static void read_rollin(const stProtocol *p, const char *file, int index, int index_last,
+                        int generation, stNetParams *rollin) {
+  char err[1024];
+  stGenomeSet set;
+  if (st_genome_set_read(file, st_arch_ngenes(ST_ARCH_BASE), &set, err, sizeof err))
+    app_die(prog, "--rollin: %s (the elite is a base-network genotype)", err);
+  if (index_last) index = set.count - 1;
+  if (index >= set.count) app_die(prog, "--rollin-index %d: %s has %d genotypes", index, file, set.count);
+  if (index < 0 && set.generation[0] >= 0 && generation == 0)
+    app_die(prog, "--rollin %s: generation 0's elite is the initial population's first genotype, "
+            "not a generation's best: give that file (or --rollin-index)", file);
+  if (index < 0) index = pick_index(&set, file, generation - 1);
+  fprintf(stderr, "replay: roll-in by genotype %d of %s (stage.handover_rollin = elite)\n", index,
+          file);
+  if (st_net_decode(&p->net, ST_ARCH_BASE, &set.genome[index], rollin, err, sizeof err))
+    app_die(prog, "--rollin: %s", err);
+  st_genome_set_free(&set);
+}
+
 int main(int argc, char **argv) {
   appConfigArgs ca;
   memset(&ca, 0, sizeof ca);
   const char *genome = NULL, *out = NULL, *stage_name = NULL, *post_name = NULL, *html = NULL,
-             *three = NULL;
+             *three = NULL, *rollin_file = NULL;
   int caretaker = 0, trial = -1, generation = -1, index = -1, index_last = 0, nforce = 0, digits = 9;
+  int rollin_index = -1, rollin_last = 0;
   stForce force[MAX_FORCE];
   shapesOut so;
   memset(&so, 0, sizeof so);
@@ -397,6 +427,11 @@ int main(int argc, char **argv) {
       if (!strcmp(argv[++i], "last")) index_last = 1;
       else index = app_int_arg(prog, a, argv[i], 0);
     }
+    else if (!strcmp(a, "--rollin") && i + 1 < argc) rollin_file = argv[++i];
+    else if (!strcmp(a, "--rollin-index") && i + 1 < argc) {
+      if (!strcmp(argv[++i], "last")) rollin_last = 1;
+      else rollin_index = app_int_arg(prog, a, argv[i], 0);
+    }
     else if (a[0] == '-' && a[1]) app_die(prog, "unknown or incomplete option '%s'", a);
     else if (!genome) genome = a;
     else if (!ca.config_path) ca.config_path = a;
@@ -405,6 +440,7 @@ int main(int argc, char **argv) {
   if (!genome || !ca.config_path)
     app_die(prog, "usage: replay GENOME CONFIG --trial K [--out trace.csv] [--exact] "
                   "[--stage simple|main] [--generation G] [--index I] [--force OUT=VALUE[@STEP]]... "
+                  "[--rollin FILE [--rollin-index I]] "
                   "[--posteval integration|robustness|generalisation [--caretaker]] "
                   "[--shapes FILE [--at STEP,...|last] [--shapes-every N]] [--html FILE [--three DIR]]");
   if (!so.path && (so.nat || so.last || so.every))
@@ -436,6 +472,16 @@ int main(int argc, char **argv) {
   /* main-prim with stage.handover: trials 16..27 are its hand-over trials */
   const int ntrials = stage == ST_STAGE_MAIN && cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
   if (post < 0 && !integrated && trial >= ntrials) app_die(prog, "--trial: expected 0..%d", ntrials - 1);
+  /* stage.handover_rollin = elite: a hand-over trial's roll-in is the elite's */
+  const int elite_rollin = post < 0 && !integrated && stage == ST_STAGE_MAIN && cfg.stage_handover &&
+                           cfg.stage_handover_rollin == ST_ROLLIN_ELITE && trial >= ST_PRIM_TRIALS;
+  if (elite_rollin && !rollin_file)
+    app_die(prog, "%s rolls hand-over trials in with the generation's elite (stage.handover_rollin "
+            "= elite): give it with --rollin FILE (e.g. the run's best.genome: generation G - 1's "
+            "best; or the checkpoint or population of generation G: its genotype 0)", ca.config_path);
+  if (!elite_rollin && (rollin_file || rollin_index >= 0 || rollin_last))
+    app_die(prog, "--rollin names who rolls a hand-over trial in under stage.handover_rollin = "
+            "elite: give a main-prim hand-over trial (16..27) of such a config");
   /* network.arch: an integrated-stage genotype (type A or B) replays primitive trials too */
   const stNetArch arch = (stNetArch)cfg.network_arch;
   char err[1024];
@@ -453,6 +499,8 @@ int main(int argc, char **argv) {
   stNetParams np;
   if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);
+  stNetParams rollin;
+  if (elite_rollin) read_rollin(p, rollin_file, rollin_index, rollin_last, generation, &rollin);
   static traceCtx trace; /* static: its summary buffers are large */
   trace.csv.arch = arch;
   trace.csv.digits = digits;
@@ -465,7 +513,8 @@ int main(int argc, char **argv) {
   }
   if (post >= 0) replay_posteval(p, (stPostTest)post, caretaker, trial, &np, &trace);
   else if (integrated) replay_integrated(p, generation, index, trial, &np, &trace);
-  else replay_primitive(p, stage, generation, index, trial, &np, force, nforce, &trace);
+  else replay_primitive(p, stage, generation, index, trial, &np, elite_rollin ? &rollin : NULL,
+                        force, nforce, &trace);
   if (trace.csv.f && fclose(trace.csv.f) != 0) app_die(prog, "%s: write error", out);
   if (trace.shapes) shapes_finish(trace.shapes);
   if (trace.page) trial_page_finish(trace.page, &trace.sum);

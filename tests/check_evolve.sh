@@ -186,6 +186,70 @@ else
   ko "stage.handover, stage.chain_trials" "$(tail -2 "$tmp/h1.log" "$tmp/c1.log") $(cat "$tmp/hreplay.txt" "$tmp/hreplay.err" | tail -3)"
 fi
 
+# stage.handover_rollin = elite: the hand-over trials' roll-in acted by the generation's genotype
+# 0 (its elite), from the hand-over step on by the individual; threads 1 = 2 over 2 generations,
+# other results than self roll-ins; the best's hand-over trials of the last generation replayed
+# with the elite (--rollin best.genome: generation 0's best is generation 1's genotype 0) to
+# the csv's F and successes, and refused without it
+el=("${ho[@]}" --set stage.handover=true --set stage.handover_rollin=elite)
+"$EV" configs/main_prim.cfg "${el[@]}" --threads 1 --out "$tmp/e1" > "$tmp/e1.log" 2>&1
+"$EV" configs/main_prim.cfg "${el[@]}" --threads 2 --out "$tmp/e2" > "$tmp/e2.log" 2>&1
+for k in 4 5 6 7 16 17 18 19; do
+  r=(); [ $k -ge 16 ] && r=(--rollin "$tmp/e1/best.genome")
+  "$APPDIR/replay" "$tmp/e1/population.genome" "$tmp/e1/config.ini" --trial $k --generation 1 --index 0 "${r[@]}"
+done > "$tmp/ereplay.txt" 2> "$tmp/ereplay.err"
+"$APPDIR/replay" "$tmp/e1/population.genome" "$tmp/e1/config.ini" --trial 16 --generation 1 > /dev/null 2> "$tmp/enoroll.err"; rc=$?
+if same_files "$tmp/e1" "$tmp/e2" && ! cmp -s "$tmp/e1/fitness.csv" "$tmp/h1/fitness.csv" &&
+   grep -q '^handover_rollin = elite' "$tmp/e1/config.ini" &&
+   [ "$(grep -c 'handover_step=' "$tmp/ereplay.txt")" = 4 ] &&
+   [ "$(grep -c 'roll-in by genotype 0 of .*best.genome (stage.handover_rollin = elite)' "$tmp/ereplay.err")" = 4 ] &&
+   [ $rc != 0 ] && grep -q 'stage.handover_rollin = elite): give it with --rollin FILE' "$tmp/enoroll.err" &&
+   python3 - "$tmp/ereplay.txt" "$tmp/e1/fitness.csv" <<'PY'
+import csv, re, sys
+F, succ = 0.0, []
+for line in open(sys.argv[1]):
+    F += float(re.search(r"F_contribution=(\S+)", line).group(1))
+    succ.append(int(re.search(r"success=(\d)", line).group(1)))
+row = list(csv.DictReader(open(sys.argv[2])))[-1]
+want = [int(row["best_t%d" % t]) for t in range(4, 8)] + [int(row["best_h%d" % t]) for t in range(4)]
+print("replay F_open %.6f vs csv %s, successes %s vs %s" % (F, row["best"], succ, want))
+sys.exit(0 if succ == want and abs(F - float(row["best"])) < 1e-4 else 1)
+PY
+then
+  ok "stage.handover_rollin = elite: threads 1 = 2, hand-over trials replayed with the elite to the csv's F and successes"
+else
+  ko "stage.handover_rollin = elite" "$(tail -2 "$tmp/e1.log") $(cat "$tmp/ereplay.txt" "$tmp/ereplay.err" "$tmp/enoroll.err" | tail -4)"
+fi
+# killed and resumed: the elite is the checkpointed population's genotype 0, nothing more
+el4=("${el[@]}" --generations 4)
+"$EV" configs/main_prim.cfg "${el4[@]}" --threads 1 --out "$tmp/e4" > /dev/null 2>&1
+"$EV" configs/main_prim.cfg "${el4[@]}" --threads 2 --out "$tmp/ek" > /dev/null 2>&1 &
+pid=$!
+for _ in $(seq 300); do grep -qs '^1,' "$tmp/ek/fitness.csv" && break; sleep 0.05; done
+kill -9 $pid 2>/dev/null
+wait $pid 2>/dev/null
+done_before=$(($(wc -l < "$tmp/ek/fitness.csv") - 1))
+"$EV" configs/main_prim.cfg "${el4[@]}" --threads 1 --out "$tmp/ek" --resume > "$tmp/ek.log" 2>&1
+if [ "$done_before" -ge 1 ] && [ "$done_before" -lt 4 ] && same_files "$tmp/e4" "$tmp/ek"; then
+  ok "stage.handover_rollin = elite: killed after $done_before generations, resumed: identical files"
+else
+  ko "elite roll-ins resumed" "killed after $done_before generations: $(tail -2 "$tmp/ek.log")"
+fi
+# refused where it cannot act: without hand-over trials, in a stage that has none, without elites
+"$EV" configs/main_prim.cfg --generations 1 --set stage.handover_rollin=elite --out "$tmp/er1" > /dev/null 2> "$tmp/er1.err"; r1=$?
+"$EV" configs/simple_prim.cfg --generations 1 --set stage.handover=true --set stage.handover_rollin=elite --out "$tmp/er2" > /dev/null 2> "$tmp/er2.err"; r2=$?
+"$EV" configs/main_prim.cfg --generations 1 --set stage.handover=true --set stage.handover_rollin=elite --set ga.elites=0 --out "$tmp/er3" > /dev/null 2> "$tmp/er3.err"; r3=$?
+"$EV" configs/integrated_st.cfg --generations 1 --set stage.handover=true --set stage.handover_rollin=elite --out "$tmp/er4" > /dev/null 2> "$tmp/er4.err"; r4=$?
+if [ $r1 != 0 ] && grep -q "stage.handover_rollin.*expected stage.handover = true" "$tmp/er1.err" &&
+   [ $r2 != 0 ] && grep -q "stage.handover" "$tmp/er2.err" && grep -q "main-prim" "$tmp/er2.err" &&
+   [ $r3 != 0 ] && grep -q "stage.handover_rollin.*ga.elites >= 1" "$tmp/er3.err" &&
+   [ $r4 != 0 ] && grep -q "stage.handover" "$tmp/er4.err" &&
+   [ ! -e "$tmp/er1" ] && [ ! -e "$tmp/er2" ] && [ ! -e "$tmp/er3" ] && [ ! -e "$tmp/er4" ]; then
+  ok "stage.handover_rollin = elite refused without hand-over trials, in simple-prim and the integrated stage, without elites"
+else
+  ko "elite roll-ins refused" "$(cat "$tmp/er1.err" "$tmp/er2.err" "$tmp/er3.err" "$tmp/er4.err")"
+fi
+
 # trials the simulation gives up on are reported: with a speed limit of 1 mm/s every one of the
 # 4 genotypes x 4 grasp trials diverges (the --set options also check population-dependent
 # rules only once all are in: population=4 comes before elites=1)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # evolve under mpirun (issue 16): the files of any number of ranks are those of --threads 1
-# (simple-prim, a main-prim generation, the integrated stage); bad input is refused by rank 0
+# (simple-prim, a main-prim generation, hand-over trials rolled in by the elite, the integrated
+# stage); bad input is refused by rank 0
 # alone with today's message; a killed or hanging worker ends the run with a clear error and
 # an intact checkpoint, and the resume (with another number of ranks) ends with the same files;
 # a rank that cannot evaluate (a node without the data) is named; a bad checkpoint is refused by
@@ -111,6 +112,20 @@ if same_files "$tmp/p1" "$tmp/p3" && grep -q "(1 thread each: 2 evaluation slots
   ok "one main-prim generation: mpirun -n 3 gives the files of --threads 1"
 else
   ko "main-prim under MPI" "$(tail -n 3 "$tmp/p3.log")"
+fi
+
+# main-prim's hand-over trials rolled in by the elite (stage.handover_rollin = elite): the
+# elite's genotype travels in every task, so the ranks roll in as --threads 1 does
+el=(configs/main_prim.cfg --seed 12 --generations 2 --set ga.population=4 --set ga.elites=1
+    --set ga.parents=2 --set ga.success_genotypes=4 --set stage.primitives=open
+    --set stage.init_population=data/evolved/prims_s2/population.genome --set stage.handover=true
+    --set stage.handover_rollin=elite)
+"$EV" "${el[@]}" --threads 1 --out "$tmp/e1" > /dev/null 2>&1
+mpi 3 "${el[@]}" --threads 1 --out "$tmp/e3" > "$tmp/e3.log" 2>&1
+if same_files "$tmp/e1" "$tmp/e3" && grep -q "^evolve: MPI: 3 ranks" "$tmp/e3.log"; then
+  ok "hand-over trials rolled in by the elite: mpirun -n 3 gives the files of --threads 1"
+else
+  ko "elite roll-ins under MPI" "$(tail -n 3 "$tmp/e3.log")"
 fi
 
 # the integrated stage (ST-CT: self talk and the prediction fitness), tiny

@@ -472,6 +472,198 @@ static void test_handover_keys(void) {
   ST_ASSERT_CONTAINS(err, "stage.handover");
 }
 
+/* ---- stage.handover_rollin = elite ---- */
+
+static stProtocol *elite_protocol(int elite) {
+  stConfig c;
+  st_config_default(&c);
+  c.stage_stages = ST_STAGES_MAIN;
+  c.stage_handover = 1;
+  c.stage_handover_rollin = elite ? ST_ROLLIN_ELITE : ST_ROLLIN_SELF;
+  stProtocol *p = NULL;
+  char err[512] = "";
+  if (st_protocol_create(&c, &p, err, sizeof err)) fprintf(stderr, "%s\n", err);
+  return p;
+}
+
+/* what a trace keeps of each step for the roll-in comparisons: inputs, outputs, object */
+typedef struct ioRec {
+  int n;
+  int word[400], handover[400];
+  double in[400][ST_NET_MAX_IN], out[400][ST_NET_MAX_OUT], obj[400][3];
+} ioRec;
+
+static void io_step(void *ctx, const stTraceStep *s) {
+  ioRec *r = ctx;
+  if (r->n >= 400) return;
+  r->word[r->n] = s->word;
+  r->handover[r->n] = s->handover;
+  memcpy(r->in[r->n], s->in, sizeof r->in[0]);
+  memcpy(r->out[r->n], s->out, sizeof(double) * (size_t)s->nout);
+  memcpy(r->obj[r->n], s->world->obj, sizeof r->obj[0]);
+  r->n++;
+}
+
+/* The elite evaluated under elite roll-ins is, bit for bit, the elite evaluated under its own
+ * (self) roll-ins as individual 0, whose solver key every elite roll-in takes: the same
+ * network acts both phases. Checked trial by trial against st_trial_run of the self protocol
+ * and for the whole evaluation. */
+static void test_rollin_elite_self(void) {
+  stProtocol *pe = elite_protocol(1), *ps = elite_protocol(0);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(pe);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(ps);
+  stNetParams elite;
+  CU_ASSERT_FATAL(evolved_net(&elite));
+  stWorkspace ws = {NULL, NULL, NULL};
+  char err[512] = "";
+  const int gen = 2;
+  int handed = 0;
+  for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
+    const int i = ST_PRIM_TRIALS + j;
+    stTrialSpec t;
+    st_trial_spec(pe, ST_STAGE_MAIN, gen, i, &t);
+    /* whoever runs it, an elite roll-in has individual 0's key; a self one its own */
+    CU_ASSERT_EQUAL(st_trial_seed_key(pe, gen, 7, i), st_trial_seed_key(ps, gen, 0, i));
+    CU_ASSERT_NOT_EQUAL(st_trial_seed_key(ps, gen, 7, i), st_trial_seed_key(ps, gen, 0, i));
+    stTrialResult a, b;
+    CU_ASSERT_EQUAL_FATAL(st_trial_run_rollin(pe, &ws, &t, &elite, &elite, NULL, 0,
+                                              st_trial_seed_key(pe, gen, 7, i), &a, NULL, NULL,
+                                              err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_trial_run(ps, &ws, &t, &elite, st_trial_seed_key(ps, gen, 0, i), &b,
+                                       NULL, NULL, err, sizeof err), ST_OK);
+    CU_ASSERT(memcmp(&a, &b, sizeof a) == 0);
+    handed += a.handover_step >= 0;
+  }
+  CU_ASSERT(handed >= 4);
+  stEvaluation e, e0;
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate_rollin(pe, &ws, ST_STAGE_MAIN, gen, 0, &elite, &elite, &e,
+                                                 err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(ps, &ws, ST_STAGE_MAIN, gen, 0, &elite, &e0, err,
+                                          sizeof err), ST_OK);
+  CU_ASSERT(memcmp(&e, &e0, sizeof e) == 0);
+  CU_ASSERT_EQUAL(e.handover_trials, 12);
+  st_workspace_free(&ws);
+  st_protocol_destroy(pe);
+  st_protocol_destroy(ps);
+}
+
+/* Another individual's hand-over trial under elite roll-ins: up to the hand-over step its
+ * trace (words, inputs, outputs, object) is the elite's own, bit for bit, run as individual 7
+ * against the elite's run as individual 0; it hands over at the same step; from that step the
+ * outputs are the individual's: its base network on that step's inputs from a fresh state. */
+static void test_rollin_elite_trace(void) {
+  stProtocol *p = elite_protocol(1);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(p);
+  stNetParams elite, other;
+  CU_ASSERT_FATAL(evolved_net(&elite));
+  CU_ASSERT_FATAL(evolved_net_at(&other, 60));
+  stWorkspace ws = {NULL, NULL, NULL};
+  char err[512] = "";
+  const int gen = 1;
+  int handed = 0, differs = 0;
+  for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
+    const int i = ST_PRIM_TRIALS + j;
+    stTrialSpec t;
+    st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
+    static ioRec me, ind;
+    memset(&me, 0, sizeof me);
+    memset(&ind, 0, sizeof ind);
+    stTrialResult rm, ri;
+    CU_ASSERT_EQUAL_FATAL(st_trial_run_rollin(p, &ws, &t, &elite, &elite, NULL, 0,
+                                              st_trial_seed_key(p, gen, 0, i), &rm, io_step, &me,
+                                              err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_trial_run_rollin(p, &ws, &t, &other, &elite, NULL, 0,
+                                              st_trial_seed_key(p, gen, 7, i), &ri, io_step, &ind,
+                                              err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL(ri.handover_step, rm.handover_step);
+    const int h = rm.handover_step;
+    if (h < 0) continue;
+    handed++;
+    for (int s = 0; s < h; s++) {
+      CU_ASSERT_EQUAL(ind.word[s], me.word[s]);
+      CU_ASSERT_EQUAL(ind.handover[s], -1);
+      CU_ASSERT(memcmp(ind.in[s], me.in[s], sizeof ind.in[s]) == 0);
+      CU_ASSERT(memcmp(ind.out[s], me.out[s], sizeof ind.out[s]) == 0);
+      CU_ASSERT(memcmp(ind.obj[s], me.obj[s], sizeof ind.obj[s]) == 0);
+    }
+    /* the hand-over step: the same inputs, the individual's outputs */
+    CU_ASSERT_FATAL(ind.n > h && me.n > h);
+    CU_ASSERT(memcmp(ind.in[h], me.in[h], sizeof ind.in[h]) == 0);
+    CU_ASSERT_EQUAL(ind.handover[h], h);
+    for (int s = h; s < ind.n && s < h + 3; s++) {
+      stNetState st;
+      double out[ST_NET_MAX_OUT];
+      st_net_reset(&other, &st);
+      st_net_step(&other, &st, ind.in[s], out);
+      CU_ASSERT(memcmp(out, ind.out[s], sizeof(double) * ST_NET_NOUT) == 0);
+    }
+    differs += memcmp(ind.out[h], me.out[h], sizeof(double) * ST_NET_NOUT) != 0;
+  }
+  CU_ASSERT(handed >= 4);
+  CU_ASSERT_EQUAL(differs, handed); /* genotype 60 is not the elite */
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+}
+
+/* Where elite roll-ins cannot act they are refused: stage.handover off, a stage without
+ * hand-over trials (simple-prim, the integrated stage), no elites kept; a roll-in network
+ * missing under elite or given under self; a network with memory (type A) on either side; a
+ * roll-in for a trial that is not a hand-over trial. */
+static void test_rollin_elite_refused(void) {
+  stConfig c;
+  char err[512] = "";
+  st_config_default(&c);
+  CU_ASSERT_EQUAL(c.stage_handover_rollin, ST_ROLLIN_SELF);
+  c.stage_handover_rollin = ST_ROLLIN_ELITE;
+  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "stage.handover_rollin");
+  ST_ASSERT_CONTAINS(err, "expected stage.handover = true");
+  c.stage_handover = 1;
+  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
+  CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_SIMPLE_PRIM, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "stage.handover");
+  CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_INTEGRATED, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "stage.handover");
+  c.ga_elites = 0;
+  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  ST_ASSERT_CONTAINS(err, "stage.handover_rollin");
+  ST_ASSERT_CONTAINS(err, "ga.elites >= 1");
+
+  stProtocol *pe = elite_protocol(1), *ps = elite_protocol(0);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(pe);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(ps);
+  stNetParams np, a;
+  CU_ASSERT_FATAL(evolved_net(&np));
+  a = np;
+  a.arch = ST_ARCH_A; /* only the field the check reads */
+  stWorkspace ws = {NULL, NULL, NULL};
+  stEvaluation e;
+  CU_ASSERT_EQUAL(st_stage_evaluate(pe, &ws, ST_STAGE_MAIN, 0, 1, &np, &e, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "stage.handover_rollin = elite");
+  CU_ASSERT_EQUAL(st_stage_evaluate_rollin(ps, &ws, ST_STAGE_MAIN, 0, 1, &np, &np, &e, err, sizeof err),
+                  ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "stage.handover_rollin = self");
+  CU_ASSERT_EQUAL(st_stage_rollin_elite(pe, ST_STAGE_SIMPLE), 0);
+  CU_ASSERT_EQUAL(st_stage_rollin_elite(pe, ST_STAGE_MAIN), 1);
+  CU_ASSERT_EQUAL(st_stage_rollin_elite(ps, ST_STAGE_MAIN), 0);
+  stTrialSpec t, fixed;
+  st_trial_spec(pe, ST_STAGE_MAIN, 0, ST_PRIM_TRIALS, &t);
+  st_trial_spec(pe, ST_STAGE_MAIN, 0, 4, &fixed);
+  stTrialResult r;
+  CU_ASSERT_EQUAL(st_trial_run_rollin(pe, &ws, &t, &a, &np, NULL, 0, 1, &r, NULL, NULL, err, sizeof err),
+                  ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "without memory");
+  CU_ASSERT_EQUAL(st_trial_run_rollin(pe, &ws, &t, &np, &a, NULL, 0, 1, &r, NULL, NULL, err, sizeof err),
+                  ST_ERR_ARG);
+  CU_ASSERT_EQUAL(st_trial_run_rollin(pe, &ws, &fixed, &np, &np, NULL, 0, 1, &r, NULL, NULL, err,
+                                      sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "no hand-over trial");
+  st_workspace_free(&ws);
+  st_protocol_destroy(pe);
+  st_protocol_destroy(ps);
+}
+
 void st_suite_handover(void) {
   ST_ADD_SUITE("handover");
   ST_ADD_TEST(test_handover_specs);
@@ -481,4 +673,7 @@ void st_suite_handover(void) {
   ST_ADD_TEST(test_handover_keys);
   ST_ADD_TEST(test_chain_fitness);
   ST_ADD_TEST(test_chain_sum);
+  ST_ADD_TEST(test_rollin_elite_self);
+  ST_ADD_TEST(test_rollin_elite_trace);
+  ST_ADD_TEST(test_rollin_elite_refused);
 }

@@ -111,6 +111,7 @@ extern "C" {
   REAL(stage, chain_gate, 0.0, 0.0, 64.0, "chain_combine = sum: F_chain is weighted by (fixed trials solved / 16)^chain_gate, so that selection keeps the thesis's 16 trials solved; 0: unweighted") \
   REAL(stage, chain_progress, 0.0, 0.0, 1000.0, "F_chain adds this times the mean of how far the caretaker got in the chained trials (reach 0 .. move 3): a shaping term, not the thesis's (docs/PROTOCOL.md); 0: eq. 2.14 alone") \
   BOOL(stage, handover_fallback, 0, "a hand-over trial whose chain never hands over: true, runs from the fixed posture; false, scores 0 over its length (a fallback it solves would reward a chain that breaks)") \
+  ENUM(stage, handover_rollin, 0, "self|elite", "who acts a hand-over trial's roll-in: self, the individual's own chain; elite, the base network of genotype 0 (the previous generation's best) for every individual (docs/PROTOCOL.md)") \
   INT(stage, handover_rollin_steps, 170, 1, 100000, "hand-over trials: the caretaker must hand over within this many steps of the chain (integrated.steps 240 less main-prim move's 70); else see handover_fallback") \
   INT(caretaker, grasp_touches, 3, 1, 6, "the caretaker considers a grasp done when this many touch sensors touch the object (thesis 2.9.3)") \
   INT(caretaker, first_step, 1, 0, 100000, "first step at which the caretaker speaks (never at step 0, thesis 2.9.3)") \
@@ -285,6 +286,8 @@ enum { ST_CFG_FIT_INTEGRATED = 0, ST_CFG_FIT_PREDICTION };
 enum { ST_FAIL_END_PENALTY = 0, ST_FAIL_END_EXACT, ST_FAIL_END_RUNOUT };
 /* stage.chain_combine */
 enum { ST_CHAIN_HARMONIC = 0, ST_CHAIN_SUM };
+/* stage.handover_rollin */
+enum { ST_ROLLIN_SELF = 0, ST_ROLLIN_ELITE };
 
 /* Choice name of an ENUM key's value, e.g. st_config_enum_name("network", "arch", 1) = "A". */
 const char *st_config_enum_name(const char *section, const char *name, int value);

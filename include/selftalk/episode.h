@@ -210,6 +210,21 @@ stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpe
                         const stController *ctl, const stWords *words, const stScorer *scorer,
                         stTraceFn trace, void *ctx, char *err, size_t errsz);
 
+/* st_episode_run with two actors (main-prim's hand-over trials under
+ * stage.handover_rollin = elite, docs/PROTOCOL.md): with ST_WORDS_HANDOVER, `rollin` acts every
+ * step before the hand-over (the step at which the word first reaches words->word) and ctl
+ * from that step on; both are reset at the start and only the one acting is stepped. So ctl's
+ * first step is the hand-over step, with no state from the steps before: this is exact only
+ * for controllers without memory (the base network: its outputs at t depend on its inputs at t
+ * alone), which the caller must ensure (st_trial_run_rollin takes base networks only); the
+ * loop checks what it can see: both controllers with the base network's 25 inputs and 13
+ * outputs, neither talking. Nullable: rollin (then exactly st_episode_run). ST_ERR_ARG for a
+ * rollin with another word source or another shape. */
+stStatus st_episode_run_rollin(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
+                               const stController *ctl, const stController *rollin,
+                               const stWords *words, const stScorer *scorer, stTraceFn trace,
+                               void *ctx, char *err, size_t errsz);
+
 /* The label of four linguistic values: their argmax (ties: lowest index). */
 int st_episode_label(const double *ling4);
 

@@ -63,6 +63,10 @@ typedef struct stEvolveTask {
   int generation;
   int individual;   /* index in the generation: keys the dynamic solver's generator */
   stGenome genome;
+  int has_rollin;   /* 1: main-prim's hand-over trials are rolled in by `rollin`
+                       (stage.handover_rollin = elite, st_stage_rollin_elite) */
+  stGenome rollin;  /* the generation's genotype 0, its elite (base network); carried by every
+                       task so that a task is all an evaluation needs, on any thread or process */
 } stEvolveTask;
 
 typedef struct stEvolveResult {

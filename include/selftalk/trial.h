@@ -71,7 +71,9 @@ void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialT
 void st_handover_fallback(const stProtocol *p, const stTrialSpec *handover, stTrialSpec *t);
 
 /* The key of the dynamic solver's generator for trial `index` of a generation run by
- * `individual` (stream ST_RNG_TRIAL, hand-over trials ST_RNG_HANDOVER_SOLVER). */
+ * `individual` (stream ST_RNG_TRIAL, hand-over trials ST_RNG_HANDOVER_SOLVER). With
+ * stage.handover_rollin = elite a hand-over trial takes individual 0's key (the elite's)
+ * whoever runs it, so that every individual's roll-in is the elite's, bit for bit. */
 uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index);
 
 /* Trials of a stage: 16, or 28 in main-prim with stage.handover. */
@@ -147,6 +149,18 @@ stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSp
                            const stController *ctl, uint64_t seed_key, stTrialResult *r,
                            stTraceFn trace, void *ctx, char *err, size_t errsz);
 
+/* st_trial_run_forced with the roll-in of a hand-over trial acted by another network
+ * (stage.handover_rollin = elite: the generation's elite, genotype 0): `rollin` acts the steps
+ * before the hand-over, net (with its forced outputs) the steps from it on
+ * (st_episode_run_rollin); a fallback trial is net's alone. Nullable: rollin (then exactly
+ * st_trial_run_forced). ST_ERR_ARG when rollin is given for a trial that is not a hand-over
+ * trial, or either network is not the base network (only a network without memory can take
+ * over mid-trial). */
+stStatus st_trial_run_rollin(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                             const stNetParams *net, const stNetParams *rollin,
+                             const stForce *force, int nforce, uint64_t seed_key, stTrialResult *r,
+                             stTraceFn trace, void *ctx, char *err, size_t errsz);
+
 /* Runs one trial with a network. seed_key keys the dynamic solver's generator (unused in
  * kinematic mode). Nullable: trace. */
 stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
@@ -194,6 +208,20 @@ typedef struct stEvaluation {
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, stEvaluation *e, char *err,
                            size_t errsz);
+
+/* 1 when an evaluation of `stage` has hand-over trials rolled in by the elite (main-prim,
+ * stage.handover, stage.handover_rollin = elite): st_stage_evaluate_rollin then needs the
+ * elite's network. */
+int st_stage_rollin_elite(const stProtocol *p, stStage stage);
+
+/* st_stage_evaluate with the hand-over trials' roll-in acted by `rollin`, the base network of
+ * the generation's elite (genotype 0), when st_stage_rollin_elite says so; NULL otherwise.
+ * ST_ERR_ARG naming stage.handover_rollin when rollin is missing where it is needed or given
+ * where it is not. */
+stStatus st_stage_evaluate_rollin(const stProtocol *p, stWorkspace *ws, stStage stage,
+                                  int generation, int individual, const stNetParams *net,
+                                  const stNetParams *rollin, stEvaluation *e, char *err,
+                                  size_t errsz);
 
 #ifdef __cplusplus
 }

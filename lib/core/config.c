@@ -518,6 +518,14 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
                           "the summed F_chain", "stage.chain_combine", "harmonic", "= sum", msg,
                           n)) >= 0)
     return k;
+  /* the elite is genotype 0, which st_ga_next fills with the previous generation's best only
+   * when it keeps elites */
+  if (c->stage_handover_rollin == ST_ROLLIN_ELITE && c->ga_elites < 1) {
+    snprintf(msg, n, "elite rolls the hand-over trials in with the generation's genotype 0, "
+             "which is the previous generation's best only with ga.elites >= 1 (expected "
+             "ga.elites >= 1, or stage.handover_rollin = self)");
+    return st_config_find("stage", "handover_rollin");
+  }
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
              "reach,open,grasp,move)", c->stage_primitives);

@@ -180,6 +180,25 @@ static stStatus check_episode(const stController *ctl, const stWords *words, cha
   return ST_OK;
 }
 
+/* a roll-in controller (st_episode_run_rollin): only with hand-over words, and both actors of
+ * the base network's shape (a talking or wider controller is an integrated network, whose
+ * linguistic memory the switch would cut) */
+static stStatus check_rollin(const stController *ctl, const stController *rollin,
+                             const stWords *words, char *err, size_t errsz) {
+  if (!rollin) return ST_OK;
+  const int nc = ctl->noutputs ? ctl->noutputs : ST_NET_NOUT;
+  const int nr = rollin->noutputs ? rollin->noutputs : ST_NET_NOUT;
+  if (!rollin->act || words->source != ST_WORDS_HANDOVER || ctl->ninputs != ST_NET_NIN ||
+      rollin->ninputs != ST_NET_NIN || nc != ST_NET_NOUT || nr != ST_NET_NOUT || ctl->talks ||
+      rollin->talks)
+    return st__errf(err, errsz, "episode: a roll-in controller needs hand-over words (source %s) "
+                    "and two controllers of the base network's shape (%d inputs, %d outputs, not "
+                    "talking; here %d/%d and %d/%d): only a network without memory can take over "
+                    "mid-episode", st_word_source_name(words->source), ST_NET_NIN, ST_NET_NOUT,
+                    ctl->ninputs, nc, rollin->ninputs, nr), ST_ERR_ARG;
+  return ST_OK;
+}
+
 /* what the robot hears at this step, sensing the state before the action */
 typedef struct hearing {
   stCaretaker ct;
@@ -234,15 +253,24 @@ static void observe(const stProtocol *p, const stWorld *w, stTraceStep *s) {
 stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
                         const stController *ctl, const stWords *words, const stScorer *scorer,
                         stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  return st_episode_run_rollin(p, ws, e, ctl, NULL, words, scorer, trace, ctx, err, errsz);
+}
+
+stStatus st_episode_run_rollin(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
+                               const stController *ctl, const stController *rollin,
+                               const stWords *words, const stScorer *scorer, stTraceFn trace,
+                               void *ctx, char *err, size_t errsz) {
   ST_ASSERT(p && ws && e && ctl && ctl->act && words && scorer && scorer->step);
   ST_ASSERT(e->steps >= 0);
   stWorld *w = NULL;
   stStatus st = check_episode(ctl, words, err, errsz);
+  if (!st) st = check_rollin(ctl, rollin, words, err, errsz);
   if (!st) st = episode_world(p, ws, e->dynamic, &w, err, errsz);
   if (st) return st;
   st_world_set_seed(w, e->seed_key); /* quickstep's shuffling: keyed by the trial, not the thread */
   st_world_reset(w, e->qhat0, e->obj, e->target);
   if (ctl->reset) ctl->reset(ctl->self, e);
+  if (rollin && rollin->reset) rollin->reset(rollin->self, e);
   if (scorer->begin) scorer->begin(scorer->self);
   hearing h;
   st_caretaker_init(&h.ct, &p->cfg);
@@ -269,7 +297,10 @@ stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpe
     st_net_label_input(s.word, words->scale, ling);
     st_sensor_inputs(w, &p->sensor, &q, s.focus_target, step == 0, ling, words->secondary, in,
                      ctl->ninputs);
-    ctl->act(ctl->self, w, &q, in, step, out);
+    /* the switch: the roll-in's actor until the step the word is handed over at (decided by
+     * heard_word just above, on the state before this step's action), ctl from it on */
+    const stController *actor = rollin && h.handover < 0 ? rollin : ctl;
+    actor->act(actor->self, w, &q, in, step, out);
     s.label = ctl->talks ? st_episode_label(out + ST_NET_NOUT) : -1;
     h.last_label = s.label;
     s.focus_target = st_focus_is_target(&p->sensor, out[ST_NET_OUT_FOCUS]);

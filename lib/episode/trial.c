@@ -257,22 +257,27 @@ stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec 
   return sc;
 }
 
+/* rollin (nullable): who acts a hand-over trial's roll-in (st_episode_run_rollin) */
 static stStatus run_episode(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                            const stController *ctl, uint64_t seed_key, stTrialResult *r,
-                            stTraceFn trace, void *ctx, char *err, size_t errsz) {
+                            const stController *ctl, const stController *rollin,
+                            uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
+                            char *err, size_t errsz) {
   stEpisodeSpec e;
   stWords words;
   st_trial_episode(p, t, seed_key, &e, &words);
   stPrimScorer ps;
   const stScorer sc = st_prim_scorer(&ps, p, t, r);
-  return st_episode_run(p, ws, &e, ctl, &words, &sc, trace, ctx, err, errsz);
+  return st_episode_run_rollin(p, ws, &e, ctl, rollin, &words, &sc, trace, ctx, err, errsz);
 }
 
-stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                           const stController *ctl, uint64_t seed_key, stTrialResult *r,
-                           stTraceFn trace, void *ctx, char *err, size_t errsz) {
+/* st_trial_run_with, the roll-in of a hand-over trial acted by rollin (nullable); the
+ * fallback is ctl's alone */
+static stStatus trial_run_rollin_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                                      const stController *ctl, const stController *rollin,
+                                      uint64_t seed_key, stTrialResult *r, stTraceFn trace,
+                                      void *ctx, char *err, size_t errsz) {
   ST_ASSERT(p && ws && t && ctl && ctl->act && r);
-  stStatus st = run_episode(p, ws, t, ctl, seed_key, r, trace, ctx, err, errsz);
+  stStatus st = run_episode(p, ws, t, ctl, rollin, seed_key, r, trace, ctx, err, errsz);
   if (st || !t->handover || r->handover_step >= 0) return st;
   if (!p->cfg.stage_handover_fallback) { /* the chain broke before the primitive: nothing earned */
     memset(r, 0, sizeof *r);
@@ -283,19 +288,46 @@ stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSp
   }
   stTrialSpec fallback;
   st_handover_fallback(p, t, &fallback);
-  return run_episode(p, ws, &fallback, ctl, seed_key, r, trace, ctx, err, errsz);
+  return run_episode(p, ws, &fallback, ctl, NULL, seed_key, r, trace, ctx, err, errsz);
+}
+
+stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                           const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                           stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  return trial_run_rollin_with(p, ws, t, ctl, NULL, seed_key, r, trace, ctx, err, errsz);
+}
+
+stStatus st_trial_run_rollin(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                             const stNetParams *net, const stNetParams *rollin,
+                             const stForce *force, int nforce, uint64_t seed_key, stTrialResult *r,
+                             stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && t && net);
+  stStatus st = st_force_check(force, nforce, err, errsz);
+  if (st) return st;
+  /* the base network has no memory (hidden from the inputs at t, outputs from the hidden at t:
+   * lib/core/net.c), so the individual can take over from the elite at the hand-over step as
+   * if it had acted the roll-in itself; a type A or B network's linguistic units carry the
+   * past, which the switch would drop */
+  if (rollin && (!t->handover || rollin->arch != ST_ARCH_BASE || net->arch != ST_ARCH_BASE))
+    return st__errf(err, errsz, "stage.handover_rollin = elite: trial %d is %s, networks %s and "
+                    "%s (expected a hand-over trial and two base networks: only a network "
+                    "without memory can take over from the roll-in)", t->index,
+                    t->handover ? "a hand-over trial" : "no hand-over trial",
+                    st_arch_name(net->arch), st_arch_name(rollin->arch)), ST_ERR_ARG;
+  stNetController c, rc;
+  const stController ctl = st_net_controller(&c, net, force, nforce);
+  stController rctl;
+  if (rollin) rctl = st_net_controller(&rc, rollin, NULL, 0);
+  return trial_run_rollin_with(p, ws, t, &ctl, rollin ? &rctl : NULL, seed_key, r, trace, ctx,
+                               err, errsz);
 }
 
 stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                              const stNetParams *net, const stForce *force, int nforce,
                              uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
                              char *err, size_t errsz) {
-  ST_ASSERT(net);
-  stStatus st = st_force_check(force, nforce, err, errsz);
-  if (st) return st;
-  stNetController c;
-  const stController ctl = st_net_controller(&c, net, force, nforce);
-  return st_trial_run_with(p, ws, t, &ctl, seed_key, r, trace, ctx, err, errsz);
+  return st_trial_run_rollin(p, ws, t, net, NULL, force, nforce, seed_key, r, trace, ctx, err,
+                             errsz);
 }
 
 stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
@@ -315,6 +347,8 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
   ST_ASSERT(generation >= 0 && individual >= 0);
   ST_ASSERT(index >= 0 && index < ST_MAIN_TRIALS_MAX);
   const uint64_t seed = (uint64_t)p->cfg.run_seed;
+  /* elite roll-ins: one key for every individual, or ODE's shuffling would part their starts */
+  if (index >= ST_PRIM_TRIALS && p->cfg.stage_handover_rollin == ST_ROLLIN_ELITE) individual = 0;
   if (index >= ST_PRIM_TRIALS)
     return st_rng_keyed(seed, ST_RNG_HANDOVER_SOLVER, (uint64_t)generation, (uint64_t)individual,
                         (uint64_t)(index - ST_PRIM_TRIALS)).key;
@@ -358,12 +392,14 @@ static const stTrialTable *generation_table(const stProtocol *p, stWorkspace *ws
   return tab;
 }
 
-/* runs trial t of the generation and adds it to its primitive's sums */
+/* runs trial t of the generation and adds it to its primitive's sums; rollin (nullable) acts
+ * the hand-over trials' roll-in */
 static stStatus add_trial(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                          int individual, const stNetParams *net, stageSums *sums,
-                          stTrialResult *r, char *err, size_t errsz) {
+                          int individual, const stNetParams *net, const stNetParams *rollin,
+                          stageSums *sums, stTrialResult *r, char *err, size_t errsz) {
   const uint64_t key = st_trial_seed_key(p, t->generation, individual, t->index);
-  stStatus st = st_trial_run(p, ws, t, net, key, r, NULL, NULL, err, errsz);
+  stStatus st = st_trial_run_rollin(p, ws, t, net, t->handover ? rollin : NULL, NULL, 0, key, r,
+                                    NULL, NULL, err, errsz);
   if (st) return st;
   sums->sum_sp[t->primitive] += r->sum_s - r->sum_p;
   sums->n[t->primitive] += r->steps;
@@ -407,13 +443,33 @@ static double chain_weight(const stProtocol *p, const stEvaluation *e, int fixed
   return fixed ? pow((double)solved / fixed, p->cfg.stage_chain_gate) : 1.0;
 }
 
+int st_stage_rollin_elite(const stProtocol *p, stStage stage) {
+  ST_ASSERT(p);
+  return stage == ST_STAGE_MAIN && p->cfg.stage_handover &&
+         p->cfg.stage_handover_rollin == ST_ROLLIN_ELITE;
+}
+
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, stEvaluation *e, char *err,
                            size_t errsz) {
+  return st_stage_evaluate_rollin(p, ws, stage, generation, individual, net, NULL, e, err, errsz);
+}
+
+stStatus st_stage_evaluate_rollin(const stProtocol *p, stWorkspace *ws, stStage stage,
+                                  int generation, int individual, const stNetParams *net,
+                                  const stNetParams *rollin, stEvaluation *e, char *err,
+                                  size_t errsz) {
   ST_ASSERT(p && ws && net && e);
   ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
   ST_ASSERT(generation >= 0 && individual >= 0);
   memset(e, 0, sizeof *e);
+  const int elite = st_stage_rollin_elite(p, stage);
+  if (elite != (rollin != NULL))
+    return st__errf(err, errsz, "stage.handover_rollin = %s: %s (expected the generation's "
+                    "elite's network exactly when main-prim's hand-over trials are rolled in by it)",
+                    st_config_enum_name("stage", "handover_rollin", p->cfg.stage_handover_rollin),
+                    rollin ? "a roll-in network was given" : "no roll-in network was given"),
+           ST_ERR_ARG;
   stageSums sums;
   memset(&sums, 0, sizeof sums);
   const stTrialTable *tab = generation_table(p, ws, stage, generation, err, errsz);
@@ -421,7 +477,7 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
   for (int i = 0; i < tab->n; i++) {
     if (!(p->primitives >> trial_primitive(i) & 1u)) continue;
     stTrialResult r;
-    stStatus st = add_trial(p, ws, &tab->t[i], individual, net, &sums, &r, err, errsz);
+    stStatus st = add_trial(p, ws, &tab->t[i], individual, net, rollin, &sums, &r, err, errsz);
     if (st) return st;
     e->ntrials++;
     e->successes += r.success;

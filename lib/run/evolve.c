@@ -137,8 +137,13 @@ static const char *stage_label(const run *R) {
   return R->integrated ? ST_INTEGRATED_STAGE_NAME : st_stage_name(R->stages[R->stage_idx]);
 }
 
-/* the generation's tasks: the individuals in GA order */
+/* the generation's tasks: the individuals in GA order; with stage.handover_rollin = elite each
+ * carries genotype 0 too, the previous generation's best (st_ga_next puts the elites first,
+ * best first; generation 0: the initial population's first, best first in a saved population).
+ * It is the population's own genotype 0, so a resumed run, whose checkpoint holds the
+ * population, rolls in with the same elite */
 static void make_tasks(run *R, int generation) {
+  const int rollin = !R->integrated && st_stage_rollin_elite(R->proto, R->stages[R->stage_idx]);
   for (int i = 0; i < st_ga_def(R->ga)->population; i++) {
     stEvolveTask *t = &R->tasks[i];
     t->integrated = R->integrated;
@@ -146,6 +151,9 @@ static void make_tasks(run *R, int generation) {
     t->generation = generation;
     t->individual = i;
     t->genome = *st_ga_genome(R->ga, i);
+    t->has_rollin = rollin;
+    if (rollin) t->rollin = *st_ga_genome(R->ga, 0);
+    else memset(&t->rollin, 0, sizeof t->rollin);
   }
 }
 

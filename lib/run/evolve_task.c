@@ -13,15 +13,17 @@ void st_evolve_task_run(const stProtocol *p, const stIntegratedDef *idef, stWork
   ST_ASSERT(p && idef && ws && t && r);
   memset(r, 0, sizeof *r);
   r->individual = t->individual;
-  stNetParams np;
+  stNetParams np, rollin;
   const stNetArch arch = t->integrated ? idef->arch : ST_ARCH_BASE;
   char *e = r->err;
   const size_t n = sizeof r->err;
   stStatus st = st_net_decode(&p->net, arch, &t->genome, &np, e, n);
+  if (!st && t->has_rollin) st = st_net_decode(&p->net, ST_ARCH_BASE, &t->rollin, &rollin, e, n);
   if (!st && t->integrated)
     st = st_int_evaluate(p, idef, ws, t->generation, t->individual, &np, &r->ieval, e, n);
   else if (!st)
-    st = st_stage_evaluate(p, ws, t->stage, t->generation, t->individual, &np, &r->eval, e, n);
+    st = st_stage_evaluate_rollin(p, ws, t->stage, t->generation, t->individual, &np,
+                                  t->has_rollin ? &rollin : NULL, &r->eval, e, n);
   r->status = st;
   r->fitness = st ? NAN : t->integrated ? r->ieval.fitness : r->eval.fitness;
 }
