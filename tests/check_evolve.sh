@@ -188,37 +188,53 @@ fi
 
 # stage.handover_rollin = elite: the hand-over trials' roll-in acted by the generation's genotype
 # 0 (its elite), from the hand-over step on by the individual; threads 1 = 2 over 2 generations,
-# other results than self roll-ins; the best's hand-over trials of the last generation replayed
-# with the elite (--rollin best.genome: generation 0's best is generation 1's genotype 0) to
-# the csv's F and successes, and refused without it
-el=("${ho[@]}" --set stage.handover=true --set stage.handover_rollin=elite)
+# other results than self roll-ins. The initial population puts a weaker genotype of prims_s2
+# (its 61st) first, so that generation 0's best is not its elite: that best's trials, replayed
+# from the initial population with --rollin (genotype 0), and generation 1's best's, with the
+# run's best.genome (generation 0's best is generation 1's elite), give the csv's F and
+# successes; a hand-over trial of such a config is refused without --rollin
+P=data/evolved/prims_s2/population.genome
+{ echo "# genes 612"; for g in 60 0 1 2; do sed -n "$((3 * g + 4))p" $P; done; } > "$tmp/einit.genome"
+el=("${ho[@]}" --set stage.init_population="$tmp/einit.genome" --set stage.handover=true
+    --set stage.handover_rollin=elite)
 "$EV" configs/main_prim.cfg "${el[@]}" --threads 1 --out "$tmp/e1" > "$tmp/e1.log" 2>&1
 "$EV" configs/main_prim.cfg "${el[@]}" --threads 2 --out "$tmp/e2" > "$tmp/e2.log" 2>&1
+"$EV" configs/main_prim.cfg "${el[@]}" --set stage.handover_rollin=self --threads 1 --out "$tmp/es" > /dev/null 2>&1
+b0=$(($(grep -v '^#' "$tmp/einit.genome" | grep -n -x -F "$(grep -v '^#' "$tmp/e1/best.genome" | head -1)" | cut -d: -f1 | head -1) - 1))
+for k in 4 5 6 7 16 17 18 19; do
+  r=(); [ $k -ge 16 ] && r=(--rollin "$tmp/einit.genome")
+  "$APPDIR/replay" "$tmp/einit.genome" "$tmp/e1/config.ini" --trial $k --generation 0 --index $b0 "${r[@]}"
+done > "$tmp/ereplay0.txt" 2> "$tmp/ereplay0.err"
 for k in 4 5 6 7 16 17 18 19; do
   r=(); [ $k -ge 16 ] && r=(--rollin "$tmp/e1/best.genome")
   "$APPDIR/replay" "$tmp/e1/population.genome" "$tmp/e1/config.ini" --trial $k --generation 1 --index 0 "${r[@]}"
-done > "$tmp/ereplay.txt" 2> "$tmp/ereplay.err"
+done > "$tmp/ereplay1.txt" 2> "$tmp/ereplay1.err"
 "$APPDIR/replay" "$tmp/e1/population.genome" "$tmp/e1/config.ini" --trial 16 --generation 1 > /dev/null 2> "$tmp/enoroll.err"; rc=$?
-if same_files "$tmp/e1" "$tmp/e2" && ! cmp -s "$tmp/e1/fitness.csv" "$tmp/h1/fitness.csv" &&
-   grep -q '^handover_rollin = elite' "$tmp/e1/config.ini" &&
-   [ "$(grep -c 'handover_step=' "$tmp/ereplay.txt")" = 4 ] &&
-   [ "$(grep -c 'roll-in by genotype 0 of .*best.genome (stage.handover_rollin = elite)' "$tmp/ereplay.err")" = 4 ] &&
+if same_files "$tmp/e1" "$tmp/e2" && ! cmp -s "$tmp/e1/fitness.csv" "$tmp/es/fitness.csv" &&
+   grep -q '^handover_rollin = elite' "$tmp/e1/config.ini" && [ "$b0" -ge 1 ] &&
+   [ "$(cat "$tmp/ereplay0.txt" "$tmp/ereplay1.txt" | grep -c 'handover_step=')" = 8 ] &&
+   [ "$(grep -c 'roll-in by genotype 0 of .*einit.genome (stage.handover_rollin = elite)' "$tmp/ereplay0.err")" = 4 ] &&
+   [ "$(grep -c 'roll-in by genotype 0 of .*best.genome (stage.handover_rollin = elite)' "$tmp/ereplay1.err")" = 4 ] &&
    [ $rc != 0 ] && grep -q 'stage.handover_rollin = elite): give it with --rollin FILE' "$tmp/enoroll.err" &&
-   python3 - "$tmp/ereplay.txt" "$tmp/e1/fitness.csv" <<'PY'
+   python3 - "$tmp/ereplay0.txt" "$tmp/ereplay1.txt" "$tmp/e1/fitness.csv" <<'PY'
 import csv, re, sys
-F, succ = 0.0, []
-for line in open(sys.argv[1]):
-    F += float(re.search(r"F_contribution=(\S+)", line).group(1))
-    succ.append(int(re.search(r"success=(\d)", line).group(1)))
-row = list(csv.DictReader(open(sys.argv[2])))[-1]
-want = [int(row["best_t%d" % t]) for t in range(4, 8)] + [int(row["best_h%d" % t]) for t in range(4)]
-print("replay F_open %.6f vs csv %s, successes %s vs %s" % (F, row["best"], succ, want))
-sys.exit(0 if succ == want and abs(F - float(row["best"])) < 1e-4 else 1)
+rows = list(csv.DictReader(open(sys.argv[3])))
+ok = True
+for g in (0, 1):
+    F, succ = 0.0, []
+    for line in open(sys.argv[1 + g]):
+        F += float(re.search(r"F_contribution=(\S+)", line).group(1))
+        succ.append(int(re.search(r"success=(\d)", line).group(1)))
+    row = rows[g]
+    want = [int(row["best_t%d" % t]) for t in range(4, 8)] + [int(row["best_h%d" % t]) for t in range(4)]
+    print("generation %d: replay F_open %.6f vs csv %s, successes %s vs %s" % (g, F, row["best"], succ, want))
+    ok = ok and succ == want and abs(F - float(row["best"])) < 1e-4
+sys.exit(0 if ok else 1)
 PY
 then
   ok "stage.handover_rollin = elite: threads 1 = 2, hand-over trials replayed with the elite to the csv's F and successes"
 else
-  ko "stage.handover_rollin = elite" "$(tail -2 "$tmp/e1.log") $(cat "$tmp/ereplay.txt" "$tmp/ereplay.err" "$tmp/enoroll.err" | tail -4)"
+  ko "stage.handover_rollin = elite" "best of generation 0: genotype $b0; $(tail -2 "$tmp/e1.log") $(cat "$tmp/ereplay0.txt" "$tmp/ereplay1.txt" "$tmp/ereplay0.err" "$tmp/enoroll.err" | tail -5)"
 fi
 # killed and resumed: the elite is the checkpointed population's genotype 0, nothing more
 el4=("${el[@]}" --generations 4)
