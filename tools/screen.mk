@@ -43,9 +43,13 @@ KEYS_handover_chain_gated_mut := $(KEYS_handover_chain_gated) --set ga.mutation_
 KEYS_handover_chain_gated_flex := $(KEYS_handover_chain_gated) --set postures.grasp_partial_flex=0.4
 # and 6 cm up (all four grasp starts): high and partly flexed at once, as the chains hand over
 KEYS_handover_chain_gated_highflex := $(KEYS_handover_chain_gated_flex) --set postures.grasp_gap=0.06
+# the hand-over trials rolled in by the generation's elite (the previous generation's best), not
+# by each individual: every individual learns from the same, better chained starts, and a
+# primitive is not rewarded for a predecessor of its own that hands over in an easy state
+KEYS_handover_elite_chain_gated := $(KEYS_handover_chain_gated) --set stage.handover_rollin=elite
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
   chain_gated handover_chain_gated handover_chain_sum handover_chain_gated_mut \
-  handover_chain_gated_flex handover_chain_gated_highflex
+  handover_chain_gated_flex handover_chain_gated_highflex handover_elite_chain_gated
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
 $(error CAND=$(CAND): expected one of $(CANDIDATES))
