@@ -106,9 +106,15 @@ fi
 # committed simple-prim population
 mp=(configs/main_prim.cfg --seed 5 --generations 1 --set ga.population=12 --set ga.elites=2
     --set ga.parents=4 --set ga.success_genotypes=1)
-"$EV" "${mp[@]}" --threads 1 --out "$tmp/p1" > /dev/null 2>&1
-mpi 3 "${mp[@]}" --threads 1 --out "$tmp/p3" > "$tmp/p3.log" 2>&1
-if same_files "$tmp/p1" "$tmp/p3" && grep -q "(1 thread each: 2 evaluation slots on 1 host)" "$tmp/p3.log"; then
+# ARGS on --threads 1 and on 3 ranks of 1 thread into $tmp/TAG1 and $tmp/TAG3: the same files
+mpi_vs_threads() { # TAG ARGS...
+  local tag=$1; shift
+  "$EV" "$@" --threads 1 --out "$tmp/${tag}1" > /dev/null 2>&1
+  mpi 3 "$@" --threads 1 --out "$tmp/${tag}3" > "$tmp/${tag}3.log" 2>&1
+  same_files "$tmp/${tag}1" "$tmp/${tag}3" &&
+    grep -q "(1 thread each: 2 evaluation slots on 1 host)" "$tmp/${tag}3.log"
+}
+if mpi_vs_threads p "${mp[@]}"; then
   ok "one main-prim generation: mpirun -n 3 gives the files of --threads 1"
 else
   ko "main-prim under MPI" "$(tail -n 3 "$tmp/p3.log")"
@@ -120,9 +126,7 @@ el=(configs/main_prim.cfg --seed 12 --generations 2 --set ga.population=4 --set 
     --set ga.parents=2 --set ga.success_genotypes=4 --set stage.primitives=open
     --set stage.init_population=data/evolved/prims_s2/population.genome --set stage.handover=true
     --set stage.handover_rollin=elite)
-"$EV" "${el[@]}" --threads 1 --out "$tmp/e1" > /dev/null 2>&1
-mpi 3 "${el[@]}" --threads 1 --out "$tmp/e3" > "$tmp/e3.log" 2>&1
-if same_files "$tmp/e1" "$tmp/e3" && grep -q "^evolve: MPI: 3 ranks" "$tmp/e3.log"; then
+if mpi_vs_threads e "${el[@]}"; then
   ok "hand-over trials rolled in by the elite: mpirun -n 3 gives the files of --threads 1"
 else
   ko "elite roll-ins under MPI" "$(tail -n 3 "$tmp/e3.log")"

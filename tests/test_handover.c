@@ -16,7 +16,9 @@
 /* the best genotype of a committed primitive run that completed main-prim */
 static const char EVOLVED[] = "data/evolved/prims_s2/population.genome";
 
-static stProtocol *protocol(int handover, int rollin) {
+/* main-prim's protocol with stage.handover (and the fallback: rollin < 0; the roll-in's length:
+ * |rollin| > 0) and stage.handover_rollin = elite when elite */
+static stProtocol *protocol_elite(int handover, int rollin, int elite) {
   stConfig c;
   st_config_default(&c);
   c.stage_stages = ST_STAGES_MAIN;
@@ -24,11 +26,15 @@ static stProtocol *protocol(int handover, int rollin) {
   c.stage_handover_fallback = rollin < 0;
   if (rollin < 0) rollin = -rollin;
   if (rollin > 0) c.stage_handover_rollin_steps = rollin;
+  c.stage_handover_rollin = elite ? ST_ROLLIN_ELITE : ST_ROLLIN_SELF;
   stProtocol *p = NULL;
   char err[512] = "";
   if (st_protocol_create(&c, &p, err, sizeof err)) fprintf(stderr, "%s\n", err);
   return p;
 }
+
+static stProtocol *protocol(int handover, int rollin) { return protocol_elite(handover, rollin, 0); }
+static stProtocol *elite_protocol(int elite) { return protocol_elite(1, 0, elite); }
 
 static int evolved_net_at(stNetParams *np, int index);
 static int evolved_net(stNetParams *np) { return evolved_net_at(np, 0); }
@@ -105,11 +111,12 @@ static void test_handover_specs(void) {
   st_protocol_destroy(off);
 }
 
-/* what a trace keeps of each step */
+/* what a trace keeps of each step (inputs and outputs: for the roll-in comparisons) */
 typedef struct rec {
   int n;
   int word[400], handover[400];
   double obj[400][3], S[400], P[400], pen_table[400], pen_moving[400];
+  double in[400][ST_NET_MAX_IN], out[400][ST_NET_MAX_OUT];
 } rec;
 
 static void on_step(void *ctx, const stTraceStep *s) {
@@ -118,6 +125,8 @@ static void on_step(void *ctx, const stTraceStep *s) {
   r->word[r->n] = s->word;
   r->handover[r->n] = s->handover;
   memcpy(r->obj[r->n], s->world->obj, sizeof r->obj[0]);
+  memcpy(r->in[r->n], s->in, sizeof r->in[0]);
+  memcpy(r->out[r->n], s->out, sizeof(double) * (size_t)s->nout);
   r->S[r->n] = s->S;
   r->P[r->n] = s->P;
   r->pen_table[r->n] = s->pen_table;
@@ -474,36 +483,6 @@ static void test_handover_keys(void) {
 
 /* ---- stage.handover_rollin = elite ---- */
 
-static stProtocol *elite_protocol(int elite) {
-  stConfig c;
-  st_config_default(&c);
-  c.stage_stages = ST_STAGES_MAIN;
-  c.stage_handover = 1;
-  c.stage_handover_rollin = elite ? ST_ROLLIN_ELITE : ST_ROLLIN_SELF;
-  stProtocol *p = NULL;
-  char err[512] = "";
-  if (st_protocol_create(&c, &p, err, sizeof err)) fprintf(stderr, "%s\n", err);
-  return p;
-}
-
-/* what a trace keeps of each step for the roll-in comparisons: inputs, outputs, object */
-typedef struct ioRec {
-  int n;
-  int word[400], handover[400];
-  double in[400][ST_NET_MAX_IN], out[400][ST_NET_MAX_OUT], obj[400][3];
-} ioRec;
-
-static void io_step(void *ctx, const stTraceStep *s) {
-  ioRec *r = ctx;
-  if (r->n >= 400) return;
-  r->word[r->n] = s->word;
-  r->handover[r->n] = s->handover;
-  memcpy(r->in[r->n], s->in, sizeof r->in[0]);
-  memcpy(r->out[r->n], s->out, sizeof(double) * (size_t)s->nout);
-  memcpy(r->obj[r->n], s->world->obj, sizeof r->obj[0]);
-  r->n++;
-}
-
 /* The elite evaluated under elite roll-ins is, bit for bit, the elite evaluated under its own
  * (self) roll-ins as individual 0, whose solver key every elite roll-in takes: the same
  * network acts both phases. Checked trial by trial against st_trial_run of the self protocol
@@ -565,15 +544,15 @@ static void test_rollin_elite_trace(void) {
     const int i = ST_PRIM_TRIALS + j;
     stTrialSpec t;
     st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
-    static ioRec me, ind;
+    static rec me, ind;
     memset(&me, 0, sizeof me);
     memset(&ind, 0, sizeof ind);
     stTrialResult rm, ri;
     CU_ASSERT_EQUAL_FATAL(st_trial_run_rollin(p, &ws, &t, &elite, &elite, NULL, 0,
-                                              st_trial_seed_key(p, gen, 0, i), &rm, io_step, &me,
+                                              st_trial_seed_key(p, gen, 0, i), &rm, on_step, &me,
                                               err, sizeof err), ST_OK);
     CU_ASSERT_EQUAL_FATAL(st_trial_run_rollin(p, &ws, &t, &other, &elite, NULL, 0,
-                                              st_trial_seed_key(p, gen, 7, i), &ri, io_step, &ind,
+                                              st_trial_seed_key(p, gen, 7, i), &ri, on_step, &ind,
                                               err, sizeof err), ST_OK);
     CU_ASSERT_EQUAL(ri.handover_step, rm.handover_step);
     const int h = rm.handover_step;
