@@ -478,7 +478,8 @@ int main(int argc, char **argv) {
   if (elite_rollin && !rollin_file)
     app_die(prog, "%s rolls hand-over trials in with the generation's elite (stage.handover_rollin "
             "= elite): give it with --rollin FILE (e.g. the run's best.genome: generation G - 1's "
-            "best; or the checkpoint or population of generation G: its genotype 0)", ca.config_path);
+            "best; or generation G's checkpoint, or at generation 0 the initial population: its "
+            "genotype 0)", ca.config_path);
   if (!elite_rollin && (rollin_file || rollin_index >= 0 || rollin_last))
     app_die(prog, "--rollin names who rolls a hand-over trial in under stage.handover_rollin = "
             "elite: give a main-prim hand-over trial (16..27) of such a config");

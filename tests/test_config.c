@@ -331,6 +331,7 @@ static void test_config_stage_keys(void) {
       {"posteval", "integration_top", PI}, {"posteval", "robustness_trials", PR},
       {"posteval", "generalisation_target_y", PG}, {"robot", "alpha_dynamic", M | I | P},
       {"stage", "handover", M}, {"stage", "handover_rollin_steps", M}, {"stage", "chain_trials", M},
+      {"stage", "handover_rollin", M},
   };
   for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
     const unsigned got = st_config_key_stages(st_config_find(rows[i].section, rows[i].name));
@@ -339,8 +340,8 @@ static void test_config_stage_keys(void) {
               rows[i].stages);
     CU_ASSERT_EQUAL(got, rows[i].stages);
   }
-  /* every row of the table names a real key: 29 single keys (network 5, robot 1, scene 6,
-   * stage 17) plus the ga, caretaker, integrated, prediction, dynamics and posteval sections,
+  /* every row of the table names a real key: 30 single keys (network 5, robot 1, scene 6,
+   * stage 18) plus the ga, caretaker, integrated, prediction, dynamics and posteval sections,
    * the fitness section but reach_height, and the open, grasp and move postures, counted here
    * from the key table itself */
   int restricted = 0, whole = 0;
@@ -353,7 +354,7 @@ static void test_config_stage_keys(void) {
              (!strcmp(k->section, "fitness") && strcmp(k->name, "reach_height")) ||
              (!strcmp(k->section, "postures") && strncmp(k->name, "reach_", 6));
   }
-  CU_ASSERT_EQUAL(restricted, 29 + whole);
+  CU_ASSERT_EQUAL(restricted, 30 + whole);
 
   /* defaults pass every combination of stages */
   st_config_default(&c);
