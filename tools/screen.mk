@@ -47,9 +47,13 @@ KEYS_handover_chain_gated_highflex := $(KEYS_handover_chain_gated_flex) --set po
 # by each individual: every individual learns from the same, better chained starts, and a
 # primitive is not rewarded for a predecessor of its own that hands over in an easy state
 KEYS_handover_elite_chain_gated := $(KEYS_handover_chain_gated) --set stage.handover_rollin=elite
+# grasp's and open's fixed starts varied each generation (palm offset 2 cm, tilt 20 deg, arm
+# configurations towards reach's): the grasp hand-overs that fail drift sideways from an arm
+# configuration no fixed start has (docs/PROTOCOL.md, "Screening chaining candidates")
+KEYS_handover_chain_gated_vary := $(KEYS_handover_chain_gated) --set postures.vary_starts=true
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
   chain_gated handover_chain_gated handover_chain_sum handover_chain_gated_mut \
-  handover_chain_gated_flex handover_chain_gated_highflex handover_elite_chain_gated
+  handover_chain_gated_flex handover_chain_gated_highflex handover_chain_gated_vary handover_elite_chain_gated
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
 $(error CAND=$(CAND): expected one of $(CANDIDATES))
