@@ -93,6 +93,17 @@ static void stats_add(dynStats *st, const stWorld *w) {
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) st->points[k] += in.contact_points[k];
 }
 
+/* adds one thread's counts to the run's (callers hold the lock) */
+static void stats_merge(dynStats *to, const dynStats *from) {
+  to->substeps += from->substeps;
+  to->ode_substeps += from->ode_substeps;
+  to->unstable += from->unstable;
+  to->redos += from->redos;
+  to->aredos += from->aredos;
+  to->hinge_substeps += from->hinge_substeps;
+  for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) to->points[k] += from->points[k];
+}
+
 /* the contact-rich cases:
  *   held:  the ball in the hand of a move start, the table gone, commands frozen;
  *   press: the hand closing on the ball on the table (pressPlan, below; plan non-NULL).
@@ -125,8 +136,6 @@ static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPla
                         stDynInfo *info) {
   double t0 = now();
   long k_sum = 0;
-  dynStats acc;
-  memset(&acc, 0, sizeof acc);
 #pragma omp parallel num_threads(threads) reduction(+ : k_sum)
   {
     stWorld *w = NULL;
@@ -151,24 +160,9 @@ static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPla
       fprintf(stderr, "%s: %s\n", prog, e);
     }
 #pragma omp critical
-    {
-      acc.substeps += mine.substeps;
-      acc.ode_substeps += mine.ode_substeps;
-      acc.unstable += mine.unstable;
-      acc.redos += mine.redos;
-      acc.aredos += mine.aredos;
-      acc.hinge_substeps += mine.hinge_substeps;
-      for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) acc.points[k] += mine.points[k];
-    }
+    stats_merge(stats, &mine);
   }
   *kept += k_sum;
-  stats->substeps += acc.substeps;
-  stats->ode_substeps += acc.ode_substeps;
-  stats->unstable += acc.unstable;
-  stats->redos += acc.redos;
-  stats->aredos += acc.aredos;
-  stats->hinge_substeps += acc.hinge_substeps;
-  for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) stats->points[k] += acc.points[k];
   return now() - t0;
 }
 
@@ -198,8 +192,6 @@ static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParam
                       int trials, int steps, int threads, double *per_trial, dynStats *stats,
                       stDynInfo *info) {
   double t0 = now();
-  dynStats acc;
-  memset(&acc, 0, sizeof acc);
 #pragma omp parallel num_threads(threads)
   {
     dynStats mine;
@@ -228,23 +220,8 @@ static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParam
       fprintf(stderr, "%s: %s\n", prog, e);
     }
 #pragma omp critical
-    {
-      acc.substeps += mine.substeps;
-      acc.ode_substeps += mine.ode_substeps;
-      acc.unstable += mine.unstable;
-      acc.redos += mine.redos;
-      acc.aredos += mine.aredos;
-      acc.hinge_substeps += mine.hinge_substeps;
-      for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) acc.points[k] += mine.points[k];
-    }
+    stats_merge(stats, &mine);
   }
-  stats->substeps += acc.substeps;
-  stats->ode_substeps += acc.ode_substeps;
-  stats->unstable += acc.unstable;
-  stats->redos += acc.redos;
-  stats->aredos += acc.aredos;
-  stats->hinge_substeps += acc.hinge_substeps;
-  for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) stats->points[k] += acc.points[k];
   return now() - t0;
 }
 

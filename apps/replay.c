@@ -472,17 +472,6 @@ int main(int argc, char **argv) {
   /* main-prim with stage.handover: trials 16..27 are its hand-over trials */
   const int ntrials = stage == ST_STAGE_MAIN && cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
   if (post < 0 && !integrated && trial >= ntrials) app_die(prog, "--trial: expected 0..%d", ntrials - 1);
-  /* stage.handover_rollin = elite: a hand-over trial's roll-in is the elite's */
-  const int elite_rollin = post < 0 && !integrated && stage == ST_STAGE_MAIN && cfg.stage_handover &&
-                           cfg.stage_handover_rollin == ST_ROLLIN_ELITE && trial >= ST_PRIM_TRIALS;
-  if (elite_rollin && !rollin_file)
-    app_die(prog, "%s rolls hand-over trials in with the generation's elite (stage.handover_rollin "
-            "= elite): give it with --rollin FILE (e.g. the run's best.genome: generation G - 1's "
-            "best; or generation G's checkpoint, or at generation 0 the initial population: its "
-            "genotype 0)", ca.config_path);
-  if (!elite_rollin && (rollin_file || rollin_index >= 0 || rollin_last))
-    app_die(prog, "--rollin names who rolls a hand-over trial in under stage.handover_rollin = "
-            "elite: give a main-prim hand-over trial (16..27) of such a config");
   /* network.arch: an integrated-stage genotype (type A or B) replays primitive trials too */
   const stNetArch arch = (stNetArch)cfg.network_arch;
   char err[1024];
@@ -497,6 +486,17 @@ int main(int argc, char **argv) {
           generation);
   stProtocol *p = NULL;
   if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
+  /* stage.handover_rollin = elite: a hand-over trial's roll-in is the elite's */
+  const int elite_rollin = post < 0 && !integrated && st_stage_rollin_elite(p, stage) &&
+                           trial >= ST_PRIM_TRIALS;
+  if (elite_rollin && !rollin_file)
+    app_die(prog, "%s rolls hand-over trials in with the generation's elite (stage.handover_rollin "
+            "= elite): give it with --rollin FILE (e.g. the run's best.genome: generation G - 1's "
+            "best; or generation G's checkpoint, or at generation 0 the initial population: its "
+            "genotype 0)", ca.config_path);
+  if (!elite_rollin && (rollin_file || rollin_index >= 0 || rollin_last))
+    app_die(prog, "--rollin names who rolls a hand-over trial in under stage.handover_rollin = "
+            "elite: give a main-prim hand-over trial (16..27) of such a config");
   stNetParams np;
   if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);

@@ -543,23 +543,48 @@ static void test_determinism_interleaved(void) {
   st_world_destroy(w2);
 }
 
-/* a reset world equals a fresh one, bit for bit */
+/* a reset world equals a fresh one, bit for bit, with the [dynamics] overrides set (NULL: the
+ * defaults) */
+static void reset_equals_fresh(const char *const *set) {
+  stWorld *used = make_world(move_scene(), set);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(used);
+  detResult a, b, c;
+  det_trial(used, 0, &a); /* dirty it: another trial first */
+  det_trial(used, 1, &b);
+  st_world_destroy(used);
+  stWorld *fresh = make_world(move_scene(), set);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(fresh);
+  det_trial(fresh, 1, &c);
+  st_world_destroy(fresh);
+  CU_ASSERT(memcmp(&b, &c, sizeof b) == 0);
+}
+
 static void test_reset_equals_fresh(void) {
   static const char *const quick[] = {"dynamics.solver=quickstep", NULL};
-  const char *const *sets[2] = {NULL, quick};
+  reset_equals_fresh(NULL);
+  reset_equals_fresh(quick);
+}
+
+/* move posture k held 70 steps (the table gone after 10) in w[0] (the defaults) and w[1] (a
+ * speed key on): both keep the ball, within 2 mm of each other; returns 1 when they differ at
+ * all (the key acts) */
+static int held_like_default(stWorld *w[2], const stScene *s, int k) {
+  double q[ST_NDOF], obj[2][3];
+  CU_ASSERT_FATAL(posture(s, ST_PRIM_MOVE, k, q) == 0);
   for (int v = 0; v < 2; v++) {
-    stWorld *used = make_world(move_scene(), sets[v]);
-    CU_ASSERT_PTR_NOT_NULL_FATAL(used);
-    detResult a, b, c;
-    det_trial(used, 0, &a); /* dirty it: another trial first */
-    det_trial(used, 1, &b);
-    st_world_destroy(used);
-    stWorld *fresh = make_world(move_scene(), sets[v]);
-    CU_ASSERT_PTR_NOT_NULL_FATAL(fresh);
-    det_trial(fresh, 1, &c);
-    st_world_destroy(fresh);
-    CU_ASSERT(memcmp(&b, &c, sizeof b) == 0);
+    st_world_reset(w[v], q, s->obj_pos[k], s->target[k % 2]);
+    for (int t = 0; t < 10; t++) st_world_step_dynamic(w[v], q);
+    st_world_set_object_table_collision(w[v], 0);
+    for (int t = 0; t < 60; t++) st_world_step_dynamic(w[v], q);
+    CU_ASSERT(!st_world_unstable(w[v]));
+    CU_ASSERT(w[v]->obj[2] > s->table_hi[2]); /* held */
+    memcpy(obj[v], w[v]->obj, sizeof obj[v]);
   }
+  CU_ASSERT(dist3(obj[0], obj[1]) < 0.002);
+  if (!(dist3(obj[0], obj[1]) < 0.002))
+    fprintf(stderr, "\n  move %d: object %.4f %.4f %.4f with the key, %.4f %.4f %.4f without\n",
+            k, obj[1][0], obj[1][1], obj[1][2], obj[0][0], obj[0][1], obj[0][2]);
+  return memcmp(obj[0], obj[1], sizeof obj[0]) != 0;
 }
 
 /* dynamics.motor_active_set: refused out of range and with quickstep; on, it acts (the sub-steps
@@ -590,38 +615,12 @@ static void test_motor_active_set(void) {
   CU_ASSERT_PTR_NOT_NULL_FATAL(w[0]);
   CU_ASSERT_PTR_NOT_NULL_FATAL(w[1]);
   int differs = 0;
-  for (int k = 0; k < ST_NPOSTURE; k++) {
-    double q[ST_NDOF], obj[2][3];
-    CU_ASSERT_FATAL(posture(s, ST_PRIM_MOVE, k, q) == 0);
-    for (int v = 0; v < 2; v++) {
-      st_world_reset(w[v], q, s->obj_pos[k], s->target[k % 2]);
-      for (int t = 0; t < 10; t++) st_world_step_dynamic(w[v], q);
-      st_world_set_object_table_collision(w[v], 0);
-      for (int t = 0; t < 60; t++) st_world_step_dynamic(w[v], q);
-      CU_ASSERT(!st_world_unstable(w[v]));
-      CU_ASSERT(w[v]->obj[2] > s->table_hi[2]); /* held */
-      memcpy(obj[v], w[v]->obj, sizeof obj[v]);
-    }
-    differs |= memcmp(obj[0], obj[1], sizeof obj[0]) != 0;
-    CU_ASSERT(dist3(obj[0], obj[1]) < 0.002);
-    if (!(dist3(obj[0], obj[1]) < 0.002))
-      fprintf(stderr, "\n  move %d: object %.4f %.4f %.4f with the key, %.4f %.4f %.4f without\n",
-              k, obj[1][0], obj[1][1], obj[1][2], obj[0][0], obj[0][1], obj[0][2]);
-  }
+  for (int k = 0; k < ST_NPOSTURE; k++) differs |= held_like_default(w, s, k);
   CU_ASSERT(differs); /* it acts */
   st_world_destroy(w[0]);
   st_world_destroy(w[1]);
 
-  stWorld *used = make_world(move_scene(), on), *fresh = make_world(move_scene(), on);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(used);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(fresh);
-  detResult a, b, c;
-  det_trial(used, 0, &a);
-  det_trial(used, 1, &b);
-  det_trial(fresh, 1, &c);
-  CU_ASSERT(memcmp(&b, &c, sizeof b) == 0);
-  st_world_destroy(used);
-  st_world_destroy(fresh);
+  reset_equals_fresh(on);
 }
 
 /* dynamics.adaptive_joints: refused unless the powered hinges right after kinematic_joints, in
@@ -668,25 +667,10 @@ static void test_adaptive_joints(void) {
   CU_ASSERT_PTR_NOT_NULL_FATAL(w[1]);
   int differs = 0;
   for (int k = 0; k < ST_NPOSTURE; k++) {
-    double q[ST_NDOF], obj[2][3];
-    CU_ASSERT_FATAL(posture(s, ST_PRIM_MOVE, k, q) == 0);
-    for (int v = 0; v < 2; v++) {
-      st_world_reset(w[v], q, s->obj_pos[k], s->target[k % 2]);
-      for (int t = 0; t < 10; t++) st_world_step_dynamic(w[v], q);
-      st_world_set_object_table_collision(w[v], 0);
-      for (int t = 0; t < 60; t++) st_world_step_dynamic(w[v], q);
-      CU_ASSERT(!st_world_unstable(w[v]));
-      CU_ASSERT(w[v]->obj[2] > s->table_hi[2]); /* held */
-      memcpy(obj[v], w[v]->obj, sizeof obj[v]);
-    }
+    differs |= held_like_default(w, s, k);
     stDynInfo info;
     st_world_dynamic_info(w[1], &info);
     CU_ASSERT(info.adaptive_kinematic >= 1); /* holding the ball needs little elbow torque */
-    differs |= memcmp(obj[0], obj[1], sizeof obj[0]) != 0;
-    CU_ASSERT(dist3(obj[0], obj[1]) < 0.002);
-    if (!(dist3(obj[0], obj[1]) < 0.002))
-      fprintf(stderr, "\n  move %d: object %.4f %.4f %.4f with the key, %.4f %.4f %.4f without\n",
-              k, obj[1][0], obj[1][1], obj[1][2], obj[0][0], obj[0][1], obj[0][2]);
   }
   CU_ASSERT(differs); /* it acts */
   /* the hand driven down into the table from a grasp start: the servos give way to motors */
@@ -707,16 +691,7 @@ static void test_adaptive_joints(void) {
   st_world_destroy(w[0]);
   st_world_destroy(w[1]);
 
-  stWorld *used = make_world(move_scene(), on), *fresh = make_world(move_scene(), on);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(used);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(fresh);
-  detResult a, b, c;
-  det_trial(used, 0, &a);
-  det_trial(used, 1, &b);
-  det_trial(fresh, 1, &c);
-  CU_ASSERT(memcmp(&b, &c, sizeof b) == 0);
-  st_world_destroy(used);
-  st_world_destroy(fresh);
+  reset_equals_fresh(on);
 }
 
 /* ---- robustness ---------------------------------------------------------------------------- */

@@ -3,6 +3,7 @@
 #ifndef SELFTALK_INTERNAL_H
 #define SELFTALK_INTERNAL_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "selftalk/base.h"
@@ -37,6 +38,18 @@ void st__assert_fail(const char *func, const char *file, int line, const char *c
 
 #define ST_PI 3.14159265358979323846
 #define ST_DEG (ST_PI / 180.0)
+
+/* |v| of a 3-vector */
+static inline double st__norm3(const double *v) {
+  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* c = a x b (3-vectors; c must not alias a or b) */
+static inline void st__cross3(const double *a, const double *b, double *c) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
 
 /* Writes a formatted message into a caller's error buffer (nullable); returns 0. */
 int st__errf(char *err, size_t errsz, const char *fmt, ...) ST_PRINTF(3, 4);

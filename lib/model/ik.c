@@ -34,13 +34,11 @@ stIkTarget st_ik_target(int body, const double pos[3]) {
   return t;
 }
 
-static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
 void st_ik_target_align(stIkTarget *t, int k, const double axis[3], const double dir[3],
                         double weight) {
   ST_ASSERT(t && axis && dir);
   ST_ASSERT(k >= 0 && k < ST_IK_NAXIS);
-  double na = norm3(axis), nd = norm3(dir);
+  double na = st__norm3(axis), nd = st__norm3(dir);
   for (int i = 0; i < 3; i++) {
     t->axis[k][i] = na > 0 ? axis[i] / na : 0.0;
     t->dir[k][i] = nd > 0 ? dir[i] / nd : 0.0;
@@ -51,12 +49,6 @@ void st_ik_target_align(stIkTarget *t, int k, const double axis[3], const double
 /* v = R a (row-major R) */
 static void rot(const double *R, const double *a, double *v) {
   for (int i = 0; i < 3; i++) v[i] = R[3 * i] * a[0] + R[3 * i + 1] * a[1] + R[3 * i + 2] * a[2];
-}
-
-static void cross(const double *a, const double *b, double *c) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
 /* The task's world point x, aligned axes a[k], weighted residual res[NROW] (rows of unused
@@ -98,8 +90,8 @@ static void task_eval(const stIkTarget *t, const double (*R)[9], const double (*
       dot += t->dir[k][i] * s->a[k][i];
       rk[i] = sw * e;
     }
-    cross(t->dir[k], s->a[k], c);
-    s->dir_err[k] = atan2(norm3(c), dot);
+    st__cross3(t->dir[k], s->a[k], c);
+    s->dir_err[k] = atan2(st__norm3(c), dot);
     s->cost += t->dir_weight[k] * d2;
   }
 }
@@ -118,12 +110,12 @@ static void task_jacobian(const stRobot *r, const stIkTarget *t, const double (*
     rot(R[b], m->jnt_axis[b], w);
     const double scale = r->body_range[b][1] - r->body_range[b][0]; /* rad per unit qhat */
     for (int i = 0; i < 3; i++) lever[i] = s->x[i] - p[b][i];
-    cross(w, lever, c);
+    st__cross3(w, lever, c);
     for (int i = 0; i < 3; i++) J[i * ST_NDOF + d] += sp * scale * c[i];
     for (int k = 0; k < ST_IK_NAXIS; k++) {
       if (t->dir_weight[k] <= 0.0) continue;
       const double sw = sqrt(t->dir_weight[k]);
-      cross(w, s->a[k], c);
+      st__cross3(w, s->a[k], c);
       for (int i = 0; i < 3; i++) J[(3 + 3 * k + i) * ST_NDOF + d] += sw * scale * c[i];
     }
   }
@@ -162,7 +154,7 @@ static int target_ok(const stRobot *r, const stIkTarget *t) {
   for (int k = 0; k < ST_IK_NAXIS; k++) {
     if (!(t->dir_weight[k] >= 0.0 && isfinite(t->dir_weight[k]))) return 0;
     if (t->dir_weight[k] > 0.0) {
-      if (fabs(norm3(t->axis[k]) - 1.0) > 1e-6 || fabs(norm3(t->dir[k]) - 1.0) > 1e-6) return 0;
+      if (fabs(st__norm3(t->axis[k]) - 1.0) > 1e-6 || fabs(st__norm3(t->dir[k]) - 1.0) > 1e-6) return 0;
       used = 1;
     }
   }

@@ -298,18 +298,16 @@ void st_robot_fk(const stRobot *r, const double *qhat, double (*R)[9], double (*
 
 /* ---- how low the robot reaches (st_robot_lowest_z) ---- */
 
-static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
 /* radius of the sphere about geometry g's origin that holds it */
 static double geom_radius(const stModel *m, int g) {
   const double *s = m->geom_size[g];
   switch (m->geom_type[g]) {
     case ST_GEOM_SPHERE: return s[0];
-    case ST_GEOM_BOX: return 0.5 * norm3(s);
+    case ST_GEOM_BOX: return 0.5 * st__norm3(s);
     case ST_GEOM_CYLINDER: return sqrt(s[0] * s[0] + 0.25 * s[1] * s[1]);
     default: {
       double r = 0.0;
-      for (int v = 0; v < m->geom_nvert[g]; v++) r = fmax(r, norm3(m->mesh_vert[m->geom_vert0[g] + v]));
+      for (int v = 0; v < m->geom_nvert[g]; v++) r = fmax(r, st__norm3(m->mesh_vert[m->geom_vert0[g] + v]));
       return r;
     }
   }
@@ -335,7 +333,7 @@ void st_robot_lowest_z(const stRobot *r, double tol, double *geom_z, double *pal
   for (int b = 1; b < nb; b++) {
     const int pb = m->body_parent[b];
     nrev[b] = nrev[pb] + (m->jnt_type[b] == ST_JOINT_REVOLUTE);
-    cum[b] = cum[pb] + norm3(m->jnt_pos[b]);
+    cum[b] = cum[pb] + st__norm3(m->jnt_pos[b]);
   }
   /* the grid's joints: those with at most ng revolute joints up to them, at most three (a
    * chain's first three; fewer where the tree branches early) */
@@ -387,7 +385,7 @@ void st_robot_lowest_z(const stRobot *r, double tol, double *geom_z, double *pal
   *geom_z = INFINITY;
   for (int g = 0; g < m->ngeom; g++) {
     const int b = m->geom_body[g], a = anchor[b];
-    const double z = zmin[a] - err[a] - (cum[b] - cum[a]) - norm3(m->geom_pos[g]) - geom_radius(m, g);
+    const double z = zmin[a] - err[a] - (cum[b] - cum[a]) - st__norm3(m->geom_pos[g]) - geom_radius(m, g);
     if (z < *geom_z) *geom_z = z;
   }
   const int a = anchor[r->palm_body];

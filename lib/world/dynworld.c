@@ -1177,6 +1177,18 @@ static void restore_bodies(dynInternal *d, double (*st)[13]) {
   }
 }
 
+/* hinge hg's anchor seen from its child's centre x, and its axis, at the start of a step: where
+ * the torque checks after the step take moments (motor_torque, adaptive_torque) */
+static void hinge_frame(dynHinge *hg, const dReal *x) {
+  dVector3 anc, ax;
+  dJointGetHingeAnchor(hg->j, anc);
+  dJointGetHingeAxis(hg->j, ax);
+  for (int k = 0; k < 3; k++) {
+    hg->r1[k] = anc[k] - x[k];
+    hg->axis[k] = ax[k];
+  }
+}
+
 /* dynamics.motor_active_set, before a step: a hinge motor that did not saturate in the previous
  * sub-step (and whose joint is off its stops, where ODE replaces the motor row by the stop's)
  * gets an unbounded row, which ODE's Dantzig solver factors in one block with the joints' rows
@@ -1193,25 +1205,19 @@ static void motors_prepare(dynInternal *d) {
       dJointSetHingeParam(hg->j, dParamFMax, free_row ? dInfinity : hg->fmax);
     hg->free_row = free_row;
     if (!free_row && !hg->bounded) continue;
-    dVector3 anc, ax;
-    dJointGetHingeAnchor(hg->j, anc);
-    dJointGetHingeAxis(hg->j, ax);
-    const dReal *x = dBodyGetPosition(dJointGetBody(hg->j, 0));
-    for (int k = 0; k < 3; k++) {
-      hg->r1[k] = anc[k] - x[k];
-      hg->axis[k] = ax[k];
-    }
+    hinge_frame(hg, dBodyGetPosition(dJointGetBody(hg->j, 0)));
   }
 }
 
 /* the motor torque of hinge hg in the step just taken: its forces on the child, less the
  * moment of the linear rows at the anchor, along the axis (the angular rows act across it) */
 static double motor_torque(const dynHinge *hg) {
-  const dReal *f = hg->fb.f1, *t = hg->fb.t1;
-  const double *r = hg->r1;
-  const double m[3] = {t[0] - (r[1] * f[2] - r[2] * f[1]), t[1] - (r[2] * f[0] - r[0] * f[2]),
-                       t[2] - (r[0] * f[1] - r[1] * f[0])};
-  return m[0] * hg->axis[0] + m[1] * hg->axis[1] + m[2] * hg->axis[2];
+  const dReal *t = hg->fb.t1;
+  const double f[3] = {hg->fb.f1[0], hg->fb.f1[1], hg->fb.f1[2]};
+  double rf[3];
+  st__cross3(hg->r1, f, rf);
+  return (t[0] - rf[0]) * hg->axis[0] + (t[1] - rf[1]) * hg->axis[1] +
+         (t[2] - rf[2]) * hg->axis[2];
 }
 
 /* after a step: 1 when an unbounded motor needed more than its limit (it becomes bounded and the
@@ -1240,23 +1246,10 @@ static int motors_check(dynInternal *d) {
  * centre of mass of its body (the forces ODE reports act about it); the contact forces to come */
 static void adaptive_prepare(dynInternal *d) {
   for (int i = d->nkin0; i < d->nkin0 + d->nadapt; i++) {
-    dynHinge *hg = &d->hinge[i];
-    dVector3 anc, ax;
-    dJointGetHingeAnchor(hg->j, anc);
-    dJointGetHingeAxis(hg->j, ax);
     const dReal *x = dBodyGetPosition(d->gbody[i]);
-    for (int k = 0; k < 3; k++) {
-      hg->r1[k] = anc[k] - x[k];
-      hg->axis[k] = ax[k];
-      d->cpos[i][k] = x[k];
-    }
+    hinge_frame(&d->hinge[i], x);
+    for (int k = 0; k < 3; k++) d->cpos[i][k] = x[k];
   }
-}
-
-static void cross3(const double *a, const double *b, double *c) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
 /* moment about point a of force f at point p plus torque t, added to m */
@@ -1264,7 +1257,7 @@ static void add_moment(double *m, const double *a, const double *p, const dReal 
                        const dReal *t) {
   const double r[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]}, ff[3] = {f[0], f[1], f[2]};
   double rf[3];
-  cross3(r, ff, rf);
+  st__cross3(r, ff, rf);
   for (int k = 0; k < 3; k++) m[k] += rf[k] + (t ? t[k] : 0.0);
 }
 
@@ -1304,7 +1297,7 @@ static double adaptive_torque(const stWorld *w, const dynInternal *d, int j) {
     }
     const double omd[3] = {om[0], om[1], om[2]};
     double gyro[3];
-    cross3(omd, Io, gyro);
+    st__cross3(omd, Io, gyro);
     const dReal t[3] = {Iw[0] + gyro[0], Iw[1] + gyro[1], Iw[2] + gyro[2]};
     add_moment(need, a, d->cpos[b], f, t);
   }
