@@ -469,9 +469,16 @@ int main(int argc, char **argv) {
     else if (!strcmp(stage_name, "main")) stage = ST_STAGE_MAIN;
     else app_die(prog, "--stage '%s': expected simple or main", stage_name);
   }
-  /* main-prim with stage.handover: trials 16..27 are its hand-over trials */
-  const int ntrials = stage == ST_STAGE_MAIN && cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
-  if (post < 0 && !integrated && trial >= ntrials) app_die(prog, "--trial: expected 0..%d", ntrials - 1);
+  /* main-prim: 16..27 its hand-over trials (stage.handover), 28..35 its varied trials
+   * (postures.vary_trials = extra) */
+  const int handover = stage == ST_STAGE_MAIN && cfg.stage_handover;
+  const int varied = stage == ST_STAGE_MAIN && cfg.postures_vary_starts &&
+                     cfg.postures_vary_trials == ST_VARY_EXTRA;
+  if (post < 0 && !integrated &&
+      !(trial < ST_PRIM_TRIALS || (trial < ST_VARIED_FIRST && handover) ||
+        (trial >= ST_VARIED_FIRST && trial < ST_MAIN_TRIALS_MAX && varied)))
+    app_die(prog, "--trial %d: expected 0..%d%s%s", trial, ST_PRIM_TRIALS - 1,
+            handover ? ", 16..27 (hand-over trials)" : "", varied ? ", 28..35 (varied trials)" : "");
   /* network.arch: an integrated-stage genotype (type A or B) replays primitive trials too */
   const stNetArch arch = (stNetArch)cfg.network_arch;
   char err[1024];
@@ -488,7 +495,7 @@ int main(int argc, char **argv) {
   if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
   /* stage.handover_rollin = elite: a hand-over trial's roll-in is the elite's */
   const int elite_rollin = post < 0 && !integrated && st_stage_rollin_elite(p, stage) &&
-                           trial >= ST_PRIM_TRIALS;
+                           trial >= ST_PRIM_TRIALS && trial < ST_VARIED_FIRST;
   if (elite_rollin && !rollin_file)
     app_die(prog, "%s rolls hand-over trials in with the generation's elite (stage.handover_rollin "
             "= elite): give it with --rollin FILE (e.g. the run's best.genome: generation G - 1's "

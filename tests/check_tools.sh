@@ -185,18 +185,19 @@ else
     "$(diff "$t/csvschema.py" tools/csvschema.py | head -20)"
 fi
 # its fitness.csv layouts are the library's (st_fitness_csv), primitive and integrated, with and
-# without hand-over and chained trials
+# without hand-over, chained and varied trials
 if out=$(python3 - "$gen" <<'PY'
 import subprocess, sys
 sys.path.insert(0, "tools")
 import csvschema
 bad = []
-layouts = [(i, t, h, c) for i in (0, 1) for t in (0, 1, 8, 16, 32) for h in (0, 1) for c in (0, 1, 8)]
-for i, t, h, c in layouts:
-    lib = subprocess.run([sys.argv[1], "--fitness-header", str(i), str(t), str(h), str(c)],
+layouts = [(i, t, h, c, v) for i in (0, 1) for t in (0, 1, 8, 16, 32) for h in (0, 1) for c in (0, 1, 8)
+           for v in (0, 1)]
+for i, t, h, c, v in layouts:
+    lib = subprocess.run([sys.argv[1], "--fitness-header", str(i), str(t), str(h), str(c), str(v)],
                          capture_output=True, text=True, check=True).stdout.rstrip("\n").split(",")
-    if csvschema.fitness_columns(i, t, h, c) != lib:
-        bad.append("%s" % ((i, t, h, c),))
+    if csvschema.fitness_columns(i, t, h, c, v) != lib:
+        bad.append("%s" % ((i, t, h, c, v),))
 print("%d layouts" % len(layouts), *bad)
 sys.exit(1 if bad else 0)
 PY

@@ -145,6 +145,19 @@ static void test_config_errors(void) {
     CU_ASSERT_EQUAL(st_config_load(path, &v, e, sizeof e), ST_OK);
     CU_ASSERT(v.postures_vary_starts == 1 && v.postures_vary_tilt == 10.0);
   }
+  /* the varied trials are main-prim's: refused without the drawn starts, or in simple-prim */
+  expect_error("[postures]\nvary_trials = extra\n", ST_ERR_RANGE,
+               ":2: key 'postures.vary_trials': it shapes the drawn starts, which "
+               "postures.vary_starts = false turns off (expected postures.vary_starts = true, or "
+               "the key left out)");
+  expect_error("[postures]\nvary_starts = true\nvary_trials = extra\n", ST_ERR_RANGE,
+               ":3: key 'postures.vary_trials': extra adds main-prim trials, and stage.stages = "
+               "simple_prim runs another stage (expected stage.stages = main_prim, or "
+               "postures.vary_trials = replace)");
+  expect_error("[stage]\nstages = prims\n[postures]\nvary_starts = true\nvary_trials = extra\n",
+               ST_ERR_RANGE, ":5: key 'postures.vary_trials': extra adds main-prim trials, and "
+               "stage.stages = prims runs another stage (expected stage.stages = main_prim, or "
+               "postures.vary_trials = replace)");
   expect_error("[stage]\nprimitives = reach,grasp,lift\n", ST_ERR_RANGE,
                ":2: key 'stage.primitives': 'reach,grasp,lift' is not a list of primitives "
                "(expected a comma-separated subset of reach,open,grasp,move)");

@@ -165,12 +165,12 @@ static void test_fitness_csv_layouts(void) {
     stFitnessLayout l;
     const char *run;
   } cases[] = {
-      {{0, ST_PRIM_TRIALS, 0, 0}, "data/evolved/prims_s2/fitness.csv"},
-      {{1, 8, 0, 0}, "data/evolved/unchained/int_stct_s1/fitness.csv"},
-      {{0, ST_PRIM_TRIALS, 0, 8}, "data/evolved/chain_candidates/chain_gated_p2_s1/fitness.csv"},
-      {{0, ST_PRIM_TRIALS, 1, 0}, "data/evolved/chain_candidates/handover_p2_s1/fitness.csv"},
-      {{0, ST_PRIM_TRIALS, 1, 8}, "data/evolved/chain_candidates/hcg_p2_s1/fitness.csv"},
-      {{1, 8, 1, 8}, "data/evolved/unchained/int_ct_s1/fitness.csv"}, /* integrated: no main-prim parts */
+      {{0, ST_PRIM_TRIALS, 0, 0, 0}, "data/evolved/prims_s2/fitness.csv"},
+      {{1, 8, 0, 0, 0}, "data/evolved/unchained/int_stct_s1/fitness.csv"},
+      {{0, ST_PRIM_TRIALS, 0, 8, 0}, "data/evolved/chain_candidates/chain_gated_p2_s1/fitness.csv"},
+      {{0, ST_PRIM_TRIALS, 1, 0, 0}, "data/evolved/chain_candidates/handover_p2_s1/fitness.csv"},
+      {{0, ST_PRIM_TRIALS, 1, 8, 0}, "data/evolved/chain_candidates/hcg_p2_s1/fitness.csv"},
+      {{1, 8, 1, 8, 0}, "data/evolved/unchained/int_ct_s1/fitness.csv"}, /* integrated: no main-prim parts */
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     stFitnessCsv c;
@@ -196,7 +196,7 @@ static void test_fitness_csv_rows(void) {
   for (int t = 0; t < 8; t++) k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.success[t]);
   snprintf(want + k, sizeof want - (size_t)k, "\n");
   stFitnessCsv c;
-  const stFitnessLayout integrated = {1, 8, 0, 0};
+  const stFitnessLayout integrated = {1, 8, 0, 0, 0};
   st_fitness_csv(&integrated, &c);
   st_csv_row_text(&c.schema, &w, got, sizeof got);
   CU_ASSERT_STRING_EQUAL(got, want);
@@ -216,10 +216,21 @@ static void test_fitness_csv_rows(void) {
   k += snprintf(want + k, sizeof want - (size_t)k, ",%.17g", w.f_chain);
   for (int t = 0; t < 3; t++) k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.chain_success[t]);
   snprintf(want + k, sizeof want - (size_t)k, "\n");
-  const stFitnessLayout main_prim = {0, ST_PRIM_TRIALS, 1, 3};
+  const stFitnessLayout main_prim = {0, ST_PRIM_TRIALS, 1, 3, 0};
   st_fitness_csv(&main_prim, &c);
   st_csv_row_text(&c.schema, &w, got, sizeof got);
   CU_ASSERT_STRING_EQUAL(got, want);
+  /* and with its varied trials: best_v0..7 last */
+  w.varied_success[0] = w.varied_success[6] = 1;
+  k = (int)strlen(want) - 1;
+  for (int t = 0; t < ST_VARIED_TRIALS; t++)
+    k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.varied_success[t]);
+  snprintf(want + k, sizeof want - (size_t)k, "\n");
+  const stFitnessLayout main_varied = {0, ST_PRIM_TRIALS, 1, 3, 1};
+  st_fitness_csv(&main_varied, &c);
+  st_csv_row_text(&c.schema, &w, got, sizeof got);
+  CU_ASSERT_STRING_EQUAL(got, want);
+  CU_ASSERT_EQUAL(c.schema.ncols, 13 + ST_PRIM_TRIALS + 1 + ST_HANDOVER_TRIALS + 1 + 3 + 8);
 }
 
 /* the trials of a generation, the columns found by name */

@@ -255,7 +255,8 @@ static void test_handover_fitness(void) {
   double sp[4] = {0}, bonus[4] = {0};
   long n[4] = {0};
   int successes = 0, hs = 0, handovers = 0;
-  for (int i = 0; i < ST_MAIN_TRIALS_MAX; i++) {
+  CU_ASSERT_EQUAL_FATAL(st_stage_trials(p, ST_STAGE_MAIN), 28);
+  for (int i = 0; i < 28; i++) {
     stTrialSpec t;
     st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
     stTrialResult r;
@@ -297,6 +298,75 @@ static void test_handover_fitness(void) {
   st_workspace_free(&ws);
   st_protocol_destroy(p);
   st_protocol_destroy(off);
+}
+
+/* postures.vary_trials = extra: F_p of eq. 2.3 over a primitive's 16 fixed trials and its
+ * varied trials (open and grasp 8 trials each: 480 and 640 steps; reach 400, move 280), F their
+ * harmonic mean, recomputed from each trial run alone; the fixed trials solved as without the
+ * varied ones, the counts; the hand-over trials join when stage.handover is on too (44 trials) */
+static void test_varied_fitness(void) {
+  stConfig c;
+  st_config_default(&c);
+  c.stage_stages = ST_STAGES_MAIN;
+  stProtocol *off = NULL, *p = NULL, *both = NULL;
+  char err[512] = "";
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &off, err, sizeof err), ST_OK);
+  c.postures_vary_starts = 1, c.postures_vary_trials = ST_VARY_EXTRA;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
+  c.stage_handover = 1;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &both, err, sizeof err), ST_OK);
+  stNetParams np;
+  CU_ASSERT_FATAL(evolved_net(&np));
+  stWorkspace ws = {NULL, NULL, NULL};
+  const int gen = 2, ind = 4;
+  stEvaluation e, e0, eb;
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(both, &ws, ST_STAGE_MAIN, gen, ind, &np, &eb, err, sizeof err), ST_OK);
+  double sp[4] = {0}, bonus[4] = {0};
+  long n[4] = {0};
+  int successes = 0, vs = 0;
+  for (int i = 0; i < 36; i++) {
+    if (i >= 16 && i < 28) continue;
+    stTrialSpec t;
+    st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
+    stTrialResult r;
+    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, st_trial_seed_key(p, gen, ind, i), &r, NULL,
+                                       NULL, err, sizeof err), ST_OK);
+    sp[t.primitive] += r.sum_s - r.sum_p;
+    n[t.primitive] += r.steps;
+    bonus[t.primitive] += 10.0 * r.success;
+    successes += r.success;
+    if (i < 16) {
+      CU_ASSERT_EQUAL(e.success[i], r.success);
+      CU_ASSERT_EQUAL(e0.success[i], r.success);
+    } else {
+      CU_ASSERT_EQUAL(e.varied_success[i - 28], r.success);
+      CU_ASSERT_EQUAL(eb.varied_success[i - 28], r.success);
+      vs += r.success;
+    }
+  }
+  CU_ASSERT_EQUAL(n[0], 400);
+  CU_ASSERT_EQUAL(n[1], 480);
+  CU_ASSERT_EQUAL(n[2], 640);
+  CU_ASSERT_EQUAL(n[3], 280);
+  double inv = 0.0;
+  for (int k = 0; k < 4; k++) {
+    const double fp = bonus[k] + 100.0 / (double)n[k] * sp[k];
+    CU_ASSERT_DOUBLE_EQUAL(e.fp[k], fp, 1e-9 * fabs(fp));
+    inv += 1.0 / (fp > 0.001 ? fp : 0.001);
+  }
+  CU_ASSERT_DOUBLE_EQUAL(e.fitness, 4.0 / inv, 1e-9 * e.fitness);
+  CU_ASSERT(e.fp[0] == e0.fp[0] && e.fp[3] == e0.fp[3]); /* no varied reach or move trials */
+  CU_ASSERT(e.ntrials == 24 && e.varied_trials == 8 && e.handover_trials == 0);
+  CU_ASSERT(e0.varied_trials == 0 && eb.ntrials == 36 && eb.varied_trials == 8 && eb.handover_trials == 12);
+  CU_ASSERT_EQUAL(e.successes, successes);
+  CU_ASSERT_EQUAL(e.varied_successes, vs);
+  CU_ASSERT(vs > 0); /* prims_s2's best solves drawn starts too: the sums are not all failures */
+  st_workspace_free(&ws);
+  st_protocol_destroy(p);
+  st_protocol_destroy(off);
+  st_protocol_destroy(both);
 }
 
 /* main-prim without chained trials (off) and with cfg's (p), both evaluated for genotype
@@ -649,6 +719,7 @@ void st_suite_handover(void) {
   ST_ADD_TEST(test_handover_rollin);
   ST_ADD_TEST(test_handover_fallback);
   ST_ADD_TEST(test_handover_fitness);
+  ST_ADD_TEST(test_varied_fitness);
   ST_ADD_TEST(test_handover_keys);
   ST_ADD_TEST(test_chain_fitness);
   ST_ADD_TEST(test_chain_sum);

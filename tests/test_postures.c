@@ -575,6 +575,64 @@ static void test_trial_varied_starts(void) {
   st_protocol_destroy(wide);
 }
 
+/* postures.vary_trials = extra: main-prim's trial indices are 36, of which 0..15 and 28..35 run
+ * (16..27, the hand-over trials, only with stage.handover); trials 0..15 are the thesis's, bit
+ * for bit the specs without varied starts; trial 28 + j is open (j < 4) or grasp k = j % 4 with
+ * that trial's length and table removal, the fixed trial's object and a start drawn as under
+ * replace, with offsets and draws of its own (another target than trial 4 + j's) */
+static void test_trial_varied_extra(void) {
+  stConfig c;
+  st_config_default(&c);
+  c.run_seed = 5;
+  c.stage_stages = ST_STAGES_MAIN;
+  stProtocol *fixed = NULL, *extra = NULL, *both = NULL;
+  char err[512] = "", why[256];
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &fixed, err, sizeof err), ST_OK);
+  c.postures_vary_starts = 1, c.postures_vary_trials = ST_VARY_EXTRA;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &extra, err, sizeof err), ST_OK);
+  c.stage_handover = 1;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &both, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_stage_trials(fixed, ST_STAGE_MAIN), 16);
+  CU_ASSERT_EQUAL(st_stage_trials(extra, ST_STAGE_MAIN), 36);
+  CU_ASSERT_EQUAL(st_stage_trials(both, ST_STAGE_MAIN), 36);
+  int active = 0, active_both = 0;
+  for (int i = 0; i < 36; i++) {
+    active += st_stage_trial_active(extra, ST_STAGE_MAIN, i);
+    active_both += st_stage_trial_active(both, ST_STAGE_MAIN, i);
+    CU_ASSERT_EQUAL(st_stage_trial_active(extra, ST_STAGE_MAIN, i), i < 16 || i >= 28);
+  }
+  CU_ASSERT_EQUAL(active, 24);
+  CU_ASSERT_EQUAL(active_both, 36);
+  const int steps[] = {60, 80};
+  for (int gen = 0; gen < 2; gen++) {
+    for (int i = 0; i < ST_PRIM_TRIALS; i++) {
+      stTrialSpec a, b;
+      st_trial_spec(fixed, ST_STAGE_MAIN, gen, i, &a);
+      st_trial_spec(extra, ST_STAGE_MAIN, gen, i, &b);
+      CU_ASSERT(memcmp(&a, &b, sizeof a) == 0);
+    }
+    for (int j = 0; j < 8; j++) {
+      stTrialSpec v, f;
+      st_trial_spec(extra, ST_STAGE_MAIN, gen, 28 + j, &v);
+      st_trial_spec(fixed, ST_STAGE_MAIN, gen, 4 + j, &f);
+      const int prim = 1 + j / 4, k = j % 4;
+      CU_ASSERT(v.primitive == prim && v.k == k && v.index == 28 + j && v.handover == 0);
+      CU_ASSERT_EQUAL(v.steps, steps[j / 4]);
+      CU_ASSERT_EQUAL(v.table_off_step, f.table_off_step);
+      CU_ASSERT_EQUAL(v.target_index, k % 2);
+      CU_ASSERT(memcmp(v.obj, f.obj, sizeof v.obj) == 0);
+      CU_ASSERT(memcmp(v.target, f.target, sizeof v.target) != 0);
+      CU_ASSERT(v.start_draws >= 1);
+      CU_ASSERT(memcmp(v.qhat0, f.qhat0, sizeof v.qhat0) != 0);
+      CU_ASSERT(st_posture_check(extra->robot, &extra->scene, prim, k, v.qhat0, why, sizeof why));
+      CU_ASSERT(st_trial_seed_key(extra, gen, 3, 28 + j) != st_trial_seed_key(extra, gen, 3, 4 + j));
+    }
+  }
+  st_protocol_destroy(fixed);
+  st_protocol_destroy(extra);
+  st_protocol_destroy(both);
+}
+
 static void test_postures_move(void) {
   fixture f;
   CU_ASSERT_FATAL(fixture_open(&f));
@@ -673,6 +731,7 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_postures_varied);
   ST_ADD_TEST(test_postures_variation_draw);
   ST_ADD_TEST(test_trial_varied_starts);
+  ST_ADD_TEST(test_trial_varied_extra);
   ST_ADD_TEST(test_postures_move);
   ST_ADD_TEST(test_posture_check_rejects);
   ST_ADD_TEST(test_posture_errors);

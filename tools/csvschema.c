@@ -4,7 +4,7 @@
  * take their column names from the one definition the writers and readers use.
  *
  *   build/csvschema > tools/csvschema.py
- *   build/csvschema --fitness-header INTEGRATED TRIALS HANDOVER CHAIN_TRIALS
+ *   build/csvschema --fitness-header INTEGRATED TRIALS HANDOVER CHAIN_TRIALS [VARIED]
  *
  * tests/check_tools.sh fails while the committed file differs from what this prints; the
  * second form prints a layout's fitness.csv header (st_fitness_csv), against which the check
@@ -38,11 +38,11 @@ static void fitness(void) {
   const stFitnessColumn *c = st_fitness_columns(&n);
   printf("\n# fitness.csv (./apps/evolve): every column a run's file may have, in file order; a name\n"
          "# with %%d is one column per trial, from 0. FITNESS_IN: the runs that have the column\n"
-         "# (\"primitive\", \"integrated\"; with \"handover\" or \"chain\", only the primitive runs\n"
-         "# with main-prim's hand-over or chained trials)\nFITNESS = {\n");
+         "# (\"primitive\", \"integrated\"; with \"handover\", \"chain\" or \"varied\", only the primitive\n"
+         "# runs with main-prim's hand-over, chained or varied trials)\nFITNESS = {\n");
   for (int i = 0; i < n; i++) printf("    \"%s\": \"%s\",\n", c[i].col.name, py_kind(c[i].col.kind));
   printf("}\nFITNESS_IN = {\n");
-  static const char *const part[] = {"", "\"handover\", ", "\"chain\", "};
+  static const char *const part[] = {"", "\"handover\", ", "\"chain\", ", "\"varied\", "};
   for (int i = 0; i < n; i++) {
     char in[96]; /* a tuple: each name followed by ", ", the last space cut */
     snprintf(in, sizeof in, "%s%s%s", c[i].stages & ST_FITNESS_PRIMITIVE ? "\"primitive\", " : "",
@@ -50,18 +50,20 @@ static void fitness(void) {
     in[strlen(in) - 1] = 0;
     printf("    \"%s\": (%s),\n", c[i].col.name, in);
   }
-  static const char *const per[] = {"", "trial", "handover", "chain"};
-  printf("}\n# the columns one per trial: of the run's trials, its hand-over trials, its chained trials\n"
+  static const char *const per[] = {"", "trial", "handover", "chain", "varied"};
+  printf("}\n# the columns one per trial: of the run's trials, its hand-over trials, its chained trials,\n"
+         "# its varied trials\n"
          "FITNESS_PER = {\n");
   for (int i = 0; i < n; i++)
     if (c[i].per != ST_FITNESS_ONE) printf("    \"%s\": \"%s\",\n", c[i].col.name, per[c[i].per]);
-  printf("}\nFITNESS_HANDOVER_TRIALS = %d\nFITNESS_PRIMITIVE_TRIALS = %d\n", ST_HANDOVER_TRIALS,
-         ST_PRIM_TRIALS);
+  printf("}\nFITNESS_HANDOVER_TRIALS = %d\nFITNESS_VARIED_TRIALS = %d\nFITNESS_PRIMITIVE_TRIALS = %d\n",
+         ST_HANDOVER_TRIALS, ST_VARIED_TRIALS, ST_PRIM_TRIALS);
 }
 
 /* a layout's header, as evolve writes it */
-static int fitness_header(char **arg) {
-  const stFitnessLayout l = {atoi(arg[0]), atoi(arg[1]), atoi(arg[2]), atoi(arg[3])};
+static int fitness_header(char **arg, int narg) {
+  const stFitnessLayout l = {atoi(arg[0]), atoi(arg[1]), atoi(arg[2]), atoi(arg[3]),
+                             narg > 4 ? atoi(arg[4]) : 0};
   if (l.trials < 0 || l.trials > ST_FITNESS_MAX_TRIALS || l.chain_trials < 0 ||
       l.chain_trials > ST_CHAIN_TRIALS_MAX) {
     fprintf(stderr, "csvschema: trials 0..%d, chained trials 0..%d\n", ST_FITNESS_MAX_TRIALS,
@@ -74,9 +76,11 @@ static int fitness_header(char **arg) {
 }
 
 int main(int argc, char **argv) {
-  if (argc == 6 && !strcmp(argv[1], "--fitness-header")) return fitness_header(argv + 2);
+  if ((argc == 6 || argc == 7) && !strcmp(argv[1], "--fitness-header"))
+    return fitness_header(argv + 2, argc - 2);
   if (argc != 1) {
-    fprintf(stderr, "usage: csvschema [--fitness-header INTEGRATED TRIALS HANDOVER CHAIN_TRIALS]\n");
+    fprintf(stderr, "usage: csvschema [--fitness-header INTEGRATED TRIALS HANDOVER CHAIN_TRIALS "
+            "[VARIED]]\n");
     return 2;
   }
   printf("# SPDX-License-Identifier: MIT\n"
@@ -95,15 +99,17 @@ int main(int argc, char **argv) {
          "    library's\"\"\"\n"
          "    return {n: columns[n] for n in names}\n"
          "\n\n"
-         "def fitness_columns(integrated, trials, handover=False, chain=0):\n"
+         "def fitness_columns(integrated, trials, handover=False, chain=0, varied=False):\n"
          "    \"\"\"the header of a run's fitness.csv as ./apps/evolve writes it: the integrated stage's\n"
-         "    or the primitive stages' columns, `trials` best_tI, and main-prim's hand-over trials'\n"
-         "    and `chain` chained trials' columns\"\"\"\n"
+         "    or the primitive stages' columns, `trials` best_tI, and main-prim's hand-over trials',\n"
+         "    `chain` chained trials' and varied trials' columns\"\"\"\n"
          "    stage = \"integrated\" if integrated else \"primitive\"\n"
-         "    count = {\"trial\": trials, \"handover\": FITNESS_HANDOVER_TRIALS, \"chain\": chain}\n"
+         "    count = {\"trial\": trials, \"handover\": FITNESS_HANDOVER_TRIALS, \"chain\": chain,\n"
+         "             \"varied\": FITNESS_VARIED_TRIALS}\n"
+         "    has = {\"handover\": handover, \"chain\": chain, \"varied\": varied}\n"
          "    out = []\n"
          "    for name, runs in FITNESS_IN.items():\n"
-         "        if stage not in runs or (\"handover\" in runs and not handover) or (\"chain\" in runs and not chain):\n"
+         "        if stage not in runs or any(part in runs and not on for part, on in has.items()):\n"
          "            continue\n"
          "        out += [name %% t for t in range(count[FITNESS_PER[name]])] if name in FITNESS_PER else [name]\n"
          "    return out\n");

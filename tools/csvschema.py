@@ -55,8 +55,8 @@ SUMMARY_READ = 8
 
 # fitness.csv (./apps/evolve): every column a run's file may have, in file order; a name
 # with %d is one column per trial, from 0. FITNESS_IN: the runs that have the column
-# ("primitive", "integrated"; with "handover" or "chain", only the primitive runs
-# with main-prim's hand-over or chained trials)
+# ("primitive", "integrated"; with "handover", "chain" or "varied", only the primitive
+# runs with main-prim's hand-over, chained or varied trials)
 FITNESS = {
     "generation": "int",
     "best": "float",
@@ -79,6 +79,7 @@ FITNESS = {
     "best_h%d": "int",
     "best_F_chain": "float",
     "best_c%d": "int",
+    "best_v%d": "int",
 }
 FITNESS_IN = {
     "generation": ("primitive", "integrated",),
@@ -102,14 +103,18 @@ FITNESS_IN = {
     "best_h%d": ("primitive", "handover",),
     "best_F_chain": ("primitive", "chain",),
     "best_c%d": ("primitive", "chain",),
+    "best_v%d": ("primitive", "varied",),
 }
-# the columns one per trial: of the run's trials, its hand-over trials, its chained trials
+# the columns one per trial: of the run's trials, its hand-over trials, its chained trials,
+# its varied trials
 FITNESS_PER = {
     "best_t%d": "trial",
     "best_h%d": "handover",
     "best_c%d": "chain",
+    "best_v%d": "varied",
 }
 FITNESS_HANDOVER_TRIALS = 12
+FITNESS_VARIED_TRIALS = 8
 FITNESS_PRIMITIVE_TRIALS = 16
 
 
@@ -120,15 +125,17 @@ def pick(columns, *names):
     return {n: columns[n] for n in names}
 
 
-def fitness_columns(integrated, trials, handover=False, chain=0):
+def fitness_columns(integrated, trials, handover=False, chain=0, varied=False):
     """the header of a run's fitness.csv as ./apps/evolve writes it: the integrated stage's
-    or the primitive stages' columns, `trials` best_tI, and main-prim's hand-over trials'
-    and `chain` chained trials' columns"""
+    or the primitive stages' columns, `trials` best_tI, and main-prim's hand-over trials',
+    `chain` chained trials' and varied trials' columns"""
     stage = "integrated" if integrated else "primitive"
-    count = {"trial": trials, "handover": FITNESS_HANDOVER_TRIALS, "chain": chain}
+    count = {"trial": trials, "handover": FITNESS_HANDOVER_TRIALS, "chain": chain,
+             "varied": FITNESS_VARIED_TRIALS}
+    has = {"handover": handover, "chain": chain, "varied": varied}
     out = []
     for name, runs in FITNESS_IN.items():
-        if stage not in runs or ("handover" in runs and not handover) or ("chain" in runs and not chain):
+        if stage not in runs or any(part in runs and not on for part, on in has.items()):
             continue
         out += [name % t for t in range(count[FITNESS_PER[name]])] if name in FITNESS_PER else [name]
     return out

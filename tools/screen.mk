@@ -51,9 +51,11 @@ KEYS_handover_elite_chain_gated := $(KEYS_handover_chain_gated) --set stage.hand
 # configurations towards reach's): the grasp hand-overs that fail drift sideways from an arm
 # configuration no fixed start has (docs/PROTOCOL.md, "Screening chaining candidates")
 KEYS_handover_chain_gated_vary := $(KEYS_handover_chain_gated) --set postures.vary_starts=true
+KEYS_handover_chain_gated_vary_extra := $(KEYS_handover_chain_gated_vary) --set postures.vary_trials=extra
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
   chain_gated handover_chain_gated handover_chain_sum handover_chain_gated_mut \
-  handover_chain_gated_flex handover_chain_gated_highflex handover_chain_gated_vary handover_elite_chain_gated
+  handover_chain_gated_flex handover_chain_gated_highflex handover_chain_gated_vary handover_chain_gated_vary_extra \
+  handover_elite_chain_gated
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
 $(error CAND=$(CAND): expected one of $(CANDIDATES))

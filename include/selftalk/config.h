@@ -155,6 +155,7 @@ extern "C" {
   REAL(postures, ik_wrist_prosup, 80.0, -90.0, 90.0, "open, grasp, move: wrist pronation-supination the inverse kinematics starts from, deg") \
   REAL(postures, ik_wrist_pitch, -30.0, -90.0, 0.0, "open, grasp, move: wrist pitch the inverse kinematics starts from, deg") \
   BOOL(postures, vary_starts, 0, "open and grasp trials of the primitive stages start from postures drawn per generation and trial (docs/PROTOCOL.md, Varied starts); false: the fixed postures") \
+  ENUM(postures, vary_trials, 0, "replace|extra", "vary_starts: replace, the open and grasp trials start from drawn postures; extra, they keep theirs and main-prim has 8 trials more from drawn ones (PROTOCOL.md)") \
   REAL(postures, vary_offset, 0.02, 0.0, 0.1, "vary_starts: the palm moves horizontally, in its own frame, by up to this, m (uniform in a disc; the reach trials' object offset is +-2 cm)") \
   REAL(postures, vary_tilt, 20.0, 0.0, 45.0, "vary_starts: the palm normal tilts from straight down by up to this, deg (angle uniform, direction uniform)") \
   REAL(postures, vary_torso_pitch, 20.0, -22.0, 70.0, "vary_starts: the IK start's torso pitch is uniform between ik_torso_pitch and this, deg") \
@@ -288,6 +289,8 @@ enum { ST_FAIL_END_PENALTY = 0, ST_FAIL_END_EXACT, ST_FAIL_END_RUNOUT };
 enum { ST_CHAIN_HARMONIC = 0, ST_CHAIN_SUM };
 /* stage.handover_rollin */
 enum { ST_ROLLIN_SELF = 0, ST_ROLLIN_ELITE };
+/* postures.vary_trials */
+enum { ST_VARY_REPLACE = 0, ST_VARY_EXTRA };
 
 /* Choice name of an ENUM key's value, e.g. st_config_enum_name("network", "arch", 1) = "A". */
 const char *st_config_enum_name(const char *section, const char *name, int value);

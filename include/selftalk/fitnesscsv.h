@@ -39,6 +39,7 @@ typedef struct stFitnessRow {
   int handover_success[ST_HANDOVER_TRIALS];
   double f_chain;                     /* main-prim's chained trials: their eq. 2.14 fitness */
   int chain_success[ST_CHAIN_TRIALS_MAX];
+  int varied_success[ST_VARIED_TRIALS]; /* main-prim's varied trials: each solved */
 } stFitnessRow;
 
 /* What columns a run's file has. */
@@ -47,6 +48,7 @@ typedef struct stFitnessLayout {
   int trials;       /* best_tI columns: integrated.trials, or ST_PRIM_TRIALS */
   int handover;     /* primitive with main-prim's hand-over trials (stage.handover) */
   int chain_trials; /* primitive: main-prim's chained trials (stage.chain_trials), 0: none */
+  int varied;       /* primitive with main-prim's varied trials (postures.vary_trials = extra) */
 } stFitnessLayout;
 
 /* The table: the columns of every layout in file order. A column is in a layout when the
@@ -54,12 +56,18 @@ typedef struct stFitnessLayout {
  * trial is one column per trial, its name a printf format ("best_t%d") and its offset the
  * first element's. */
 enum { ST_FITNESS_PRIMITIVE = 1, ST_FITNESS_INTEGRATED = 2 };
-enum { ST_FITNESS_ALL = 0, ST_FITNESS_HANDOVER, ST_FITNESS_CHAIN };
-enum { ST_FITNESS_ONE = 0, ST_FITNESS_PER_TRIAL, ST_FITNESS_PER_HANDOVER, ST_FITNESS_PER_CHAIN };
+enum { ST_FITNESS_ALL = 0, ST_FITNESS_HANDOVER, ST_FITNESS_CHAIN, ST_FITNESS_VARIED };
+enum {
+  ST_FITNESS_ONE = 0,
+  ST_FITNESS_PER_TRIAL,
+  ST_FITNESS_PER_HANDOVER,
+  ST_FITNESS_PER_CHAIN,
+  ST_FITNESS_PER_VARIED
+};
 typedef struct stFitnessColumn {
   stCsvColumn col;
   unsigned stages; /* ST_FITNESS_PRIMITIVE | ST_FITNESS_INTEGRATED */
-  int part;        /* ST_FITNESS_ALL, ST_FITNESS_HANDOVER, ST_FITNESS_CHAIN */
+  int part;        /* ST_FITNESS_ALL, ST_FITNESS_HANDOVER, ST_FITNESS_CHAIN, ST_FITNESS_VARIED */
   int per;         /* ST_FITNESS_ONE, ST_FITNESS_PER_* */
 } stFitnessColumn;
 
@@ -67,7 +75,7 @@ typedef struct stFitnessColumn {
 const stFitnessColumn *st_fitness_columns(int *n);
 
 #define ST_FITNESS_CSV_MAX_COLS \
-  (16 + ST_FITNESS_MAX_TRIALS + ST_HANDOVER_TRIALS + ST_CHAIN_TRIALS_MAX)
+  (16 + ST_FITNESS_MAX_TRIALS + ST_HANDOVER_TRIALS + ST_CHAIN_TRIALS_MAX + ST_VARIED_TRIALS)
 
 /* A layout's columns as a schema (selftalk/csv.h) over stFitnessRow: schema.col points into
  * the struct, so use it where it was made (it is not copied). */

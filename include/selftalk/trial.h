@@ -20,13 +20,19 @@ extern "C" {
 /* main-prim's hand-over trials (stage.handover, not the thesis's protocol): open, grasp and
  * move from each reach posture k, indices ST_PRIM_TRIALS + 4 (primitive - 1) + k */
 #define ST_HANDOVER_TRIALS 12
-#define ST_MAIN_TRIALS_MAX (ST_PRIM_TRIALS + ST_HANDOVER_TRIALS)
+/* main-prim's varied trials (postures.vary_trials = extra, not the thesis's protocol): open and
+ * grasp from drawn starts beside their fixed trials, indices ST_VARIED_FIRST + 4 (primitive - 1)
+ * + k */
+#define ST_VARIED_TRIALS 8
+#define ST_VARIED_FIRST (ST_PRIM_TRIALS + ST_HANDOVER_TRIALS)
+#define ST_MAIN_TRIALS_MAX (ST_VARIED_FIRST + ST_VARIED_TRIALS)
 
 /* One trial, fully specified. */
 typedef struct stTrialSpec {
   stStage stage;
   int index;          /* 0..15: primitive index / 4, posture and object position index % 4;
-                         16..27: hand-over trials (primitive 1 + (index - 16) / 4) */
+                         16..27: hand-over trials (primitive 1 + (index - 16) / 4);
+                         28..35: varied trials (primitive 1 + (index - 28) / 4) */
   int generation;
   int primitive;
   int k;              /* posture and object position */
@@ -49,7 +55,10 @@ typedef struct stTrialSpec {
  * postures.vary_starts, open and grasp starts drawn from the stream (seed, ST_RNG_STARTS,
  * generation, 0, index), the first draw that st_posture_varied accepts). Main-prim indices
  * 16..27 are the hand-over trials (offsets from (seed, ST_RNG_HANDOVER, generation, 0,
- * index - 16): object, then target), built whatever stage.handover says. */
+ * index - 16): object, then target), built whatever stage.handover says; 28..35 the varied
+ * trials, open and grasp k as trials 4 + (index - 28) with their own offsets and always a drawn
+ * start (the fixed one when no draw is accepted), built whatever postures.vary_trials says; with
+ * vary_trials = extra the fixed trials keep their fixed starts. */
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t);
 
 /* A stage's trials in one generation, built once and read by every individual's evaluation
@@ -76,8 +85,17 @@ void st_handover_fallback(const stProtocol *p, const stTrialSpec *handover, stTr
  * whoever runs it, so that every individual's roll-in is the elite's, bit for bit. */
 uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index);
 
-/* Trials of a stage: 16, or 28 in main-prim with stage.handover. */
+/* The trial indices of a stage: 16; in main-prim 28 with stage.handover, 36 with
+ * postures.vary_trials = extra (st_stage_trial_active says which of them run). */
 int st_stage_trials(const stProtocol *p, stStage stage);
+
+/* 1 when an evaluation of `stage` runs trial `index` (< st_stage_trials): its primitive is one
+ * p->primitives evaluates, and it is a fixed trial, a hand-over trial with stage.handover or a
+ * varied trial with postures.vary_trials = extra. */
+int st_stage_trial_active(const stProtocol *p, stStage stage, int index);
+
+/* The primitive of trial `index` of a stage (fixed, hand-over or varied). */
+int st_trial_primitive(int index);
 
 /* The episode of a trial: its spec (kinematic in simple-prim, dynamic in main-prim; seed_key
  * keys the dynamic solver's generator) and its words (the primitive's word every step, no
@@ -191,6 +209,9 @@ typedef struct stEvaluation {
   int handover_successes;      /* ... succeeded */
   int handovers;               /* ... whose roll-in handed over (the rest ran the fallback) */
   uint8_t handover_success[ST_HANDOVER_TRIALS];
+  int varied_trials;           /* varied trials evaluated (0: postures.vary_trials = replace) */
+  int varied_successes;        /* ... succeeded */
+  uint8_t varied_success[ST_VARIED_TRIALS];
   int chain_trials;            /* chained trials evaluated (stage.chain_trials in main-prim) */
   int chain_successes;         /* ... whose object reached the target and stayed lifted */
   double f_chain;              /* their eq. 2.14 fitness: B + scale / N sum max(0, S - P) */
@@ -200,8 +221,8 @@ typedef struct stEvaluation {
 /* Evaluates a network on the 16 trials of a stage in a generation (only those of the
  * primitives in p->primitives; a trial keeps its index, offsets and generator key, so a subset
  * scores each trial exactly as the full set does), then, in main-prim with stage.handover, its
- * 12 hand-over trials: each counts in its primitive's F_p as one more trial (eq. 2.3: its
- * bonus, its S - P over its length); and, with stage.chain_trials, that many chained trials
+ * 12 hand-over trials and, with postures.vary_trials = extra, its 8 varied trials: each counts
+ * in its primitive's F_p as one more trial (eq. 2.3: its bonus, its S - P over its length); and, with stage.chain_trials, that many chained trials
  * (st_chain_def: the integrated stage's trials with the caretaker's words), whose eq. 2.14
  * fitness is one more term of the harmonic mean. individual keys the dynamic solver's
  * generator. */

@@ -518,6 +518,13 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
                           "the summed F_chain", "stage.chain_combine", "harmonic", "= sum", msg,
                           n)) >= 0)
     return k;
+  /* simple-prim's trials are the 16: its varied starts can only replace theirs */
+  if (c->postures_vary_trials == ST_VARY_EXTRA && c->stage_stages != ST_STAGES_MAIN) {
+    snprintf(msg, n, "extra adds main-prim trials, and stage.stages = %s runs another stage "
+             "(expected stage.stages = main_prim, or postures.vary_trials = replace)",
+             st_config_enum_name("stage", "stages", c->stage_stages));
+    return st_config_find("postures", "vary_trials");
+  }
   /* the elite is genotype 0, which st_ga_next fills with the previous generation's best only
    * when it keeps elites */
   if (c->stage_handover_rollin == ST_ROLLIN_ELITE && c->ga_elites < 1) {

@@ -71,11 +71,12 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
   t->stage = stage;
   t->index = index;
   t->generation = generation;
-  if (stage == ST_STAGE_MAIN && index >= ST_PRIM_TRIALS) {
+  if (stage == ST_STAGE_MAIN && index >= ST_PRIM_TRIALS && index < ST_VARIED_FIRST) {
     handover_spec(p, index - ST_PRIM_TRIALS, t);
     return;
   }
-  t->primitive = index / ST_NPOSTURE;
+  const int varied = index >= ST_VARIED_FIRST;
+  t->primitive = st_trial_primitive(index);
   t->k = index % ST_NPOSTURE;
   t->target_index = t->k % 2;
   memcpy(t->qhat0, p->posture[t->primitive][t->k], sizeof t->qhat0);
@@ -83,7 +84,8 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
   stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_TRIAL, (uint64_t)generation, 0, (uint64_t)index);
   st_scene_object(&p->scene, t->k, t->primitive == ST_PRIM_REACH, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
-  if (c->postures_vary_starts && (t->primitive == ST_PRIM_OPEN || t->primitive == ST_PRIM_GRASP))
+  if (varied || (c->postures_vary_starts && c->postures_vary_trials == ST_VARY_REPLACE &&
+                 (t->primitive == ST_PRIM_OPEN || t->primitive == ST_PRIM_GRASP)))
     vary_start(p, generation, t);
   if (stage == ST_STAGE_SIMPLE) {
     t->steps = c->stage_simple_steps;
@@ -348,23 +350,41 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
   ST_ASSERT(index >= 0 && index < ST_MAIN_TRIALS_MAX);
   const uint64_t seed = (uint64_t)p->cfg.run_seed;
   /* elite roll-ins: one key for every individual, or ODE's shuffling would part their starts */
-  if (index >= ST_PRIM_TRIALS && p->cfg.stage_handover_rollin == ST_ROLLIN_ELITE) individual = 0;
-  if (index >= ST_PRIM_TRIALS)
+  const int handover = index >= ST_PRIM_TRIALS && index < ST_VARIED_FIRST;
+  if (handover && p->cfg.stage_handover_rollin == ST_ROLLIN_ELITE) individual = 0;
+  if (handover)
     return st_rng_keyed(seed, ST_RNG_HANDOVER_SOLVER, (uint64_t)generation, (uint64_t)individual,
                         (uint64_t)(index - ST_PRIM_TRIALS)).key;
   return st_rng_keyed(seed, ST_RNG_TRIAL, (uint64_t)generation, (uint64_t)individual,
                       (uint64_t)index).key;
 }
 
+static int varied_extra(const stProtocol *p, stStage stage) {
+  return stage == ST_STAGE_MAIN && p->cfg.postures_vary_starts &&
+         p->cfg.postures_vary_trials == ST_VARY_EXTRA;
+}
+
 int st_stage_trials(const stProtocol *p, stStage stage) {
   ST_ASSERT(p);
   ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
-  return stage == ST_STAGE_MAIN && p->cfg.stage_handover ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS;
+  return varied_extra(p, stage)                            ? ST_MAIN_TRIALS_MAX
+         : stage == ST_STAGE_MAIN && p->cfg.stage_handover ? ST_VARIED_FIRST
+                                                           : ST_PRIM_TRIALS;
 }
 
-/* the primitive of trial i: fixed trials i / 4, hand-over trials 1 + (i - 16) / 4 */
-static int trial_primitive(int i) {
-  return i < ST_PRIM_TRIALS ? i / ST_NPOSTURE : ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE;
+/* fixed trials i / 4; hand-over and varied trials open, grasp (and move) by fours */
+int st_trial_primitive(int i) {
+  ST_ASSERT(i >= 0 && i < ST_MAIN_TRIALS_MAX);
+  return i < ST_PRIM_TRIALS    ? i / ST_NPOSTURE
+         : i < ST_VARIED_FIRST ? ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE
+                               : ST_PRIM_OPEN + (i - ST_VARIED_FIRST) / ST_NPOSTURE;
+}
+
+int st_stage_trial_active(const stProtocol *p, stStage stage, int i) {
+  ST_ASSERT(p);
+  ST_ASSERT(i >= 0 && i < st_stage_trials(p, stage));
+  if (!(p->primitives >> st_trial_primitive(i) & 1u)) return 0;
+  return i < ST_PRIM_TRIALS || (i < ST_VARIED_FIRST ? p->cfg.stage_handover : varied_extra(p, stage));
 }
 
 void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table) {
@@ -375,7 +395,7 @@ void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialT
   table->generation = generation;
   table->n = st_stage_trials(p, stage);
   for (int i = 0; i < table->n; i++)
-    if (p->primitives >> trial_primitive(i) & 1u) st_trial_spec(p, stage, generation, i, &table->t[i]);
+    if (st_stage_trial_active(p, stage, i)) st_trial_spec(p, stage, generation, i, &table->t[i]);
 }
 
 /* the workspace's table for the generation, built when it holds another (or none) */
@@ -475,7 +495,7 @@ stStatus st_stage_evaluate_rollin(const stProtocol *p, stWorkspace *ws, stStage 
   const stTrialTable *tab = generation_table(p, ws, stage, generation, err, errsz);
   if (!tab) return ST_ERR_NOMEM;
   for (int i = 0; i < tab->n; i++) {
-    if (!(p->primitives >> trial_primitive(i) & 1u)) continue;
+    if (!st_stage_trial_active(p, stage, i)) continue;
     stTrialResult r;
     stStatus st = add_trial(p, ws, &tab->t[i], individual, net, rollin, &sums, &r, err, errsz);
     if (st) return st;
@@ -484,6 +504,10 @@ stStatus st_stage_evaluate_rollin(const stProtocol *p, stWorkspace *ws, stStage 
     e->unstable += r.unstable;
     if (i < ST_PRIM_TRIALS) {
       e->success[i] = (uint8_t)r.success;
+    } else if (i >= ST_VARIED_FIRST) {
+      e->varied_trials++;
+      e->varied_successes += r.success;
+      e->varied_success[i - ST_VARIED_FIRST] = (uint8_t)r.success;
     } else {
       e->handover_trials++;
       e->handover_successes += r.success;

@@ -222,6 +222,10 @@ static int has_main(const run *R) {
 /* main-prim's hand-over trials (stage.handover) and chained trials (stage.chain_trials) */
 static int has_handover(const run *R) { return has_main(R) && R->cfg->stage_handover; }
 static int chain_trials(const run *R) { return has_main(R) ? R->cfg->stage_chain_trials : 0; }
+/* main-prim's varied trials (postures.vary_trials = extra) */
+static int has_varied(const run *R) {
+  return has_main(R) && R->cfg->postures_vary_starts && R->cfg->postures_vary_trials == ST_VARY_EXTRA;
+}
 
 static stStatus start_files(run *R, char *err, size_t errsz) {
   stAtomicFile af;
@@ -364,6 +368,7 @@ static void fitness_row(const run *R, int gen, const genStats *s, stFitnessRow *
   for (int t = 0; t < ST_HANDOVER_TRIALS; t++) w->handover_success[t] = be->handover_success[t];
   w->f_chain = be->f_chain; /* 0 in simple-prim generations, and the chained trials unsolved */
   for (int t = 0; t < be->chain_trials; t++) w->chain_success[t] = be->chain_success[t];
+  for (int t = 0; t < ST_VARIED_TRIALS; t++) w->varied_success[t] = be->varied_success[t];
 }
 
 /* the generation's fitness.csv row and its best genotype, appended and synced */
@@ -406,6 +411,9 @@ static void progress(const run *R, int gen, const genStats *s) {
     if (be->handover_trials)
       m += snprintf(ho, sizeof ho, " (hand-over %2d/%d, %2d handed over)", be->handover_successes,
                     be->handover_trials, be->handovers);
+    if (be->varied_trials)
+      m += snprintf(ho + m, sizeof ho - (size_t)m, " (varied %d/%d)", be->varied_successes,
+                    be->varied_trials);
     if (be->chain_trials)
       snprintf(ho + m, sizeof ho - (size_t)m, " (chained %d/%d, F_chain %.1f)", be->chain_successes,
                be->chain_trials, be->f_chain);
@@ -508,7 +516,7 @@ static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz
   R->limit = def->generations > 0 ? def->generations : cap;
   R->threads = st_thread_count(def->threads, cfg);
   const stFitnessLayout fl = {R->integrated, R->integrated ? R->idef.trials : ST_PRIM_TRIALS,
-                              has_handover(R), chain_trials(R)};
+                              has_handover(R), chain_trials(R), has_varied(R)};
   st_fitness_csv(&fl, &R->fcsv);
   return ST_OK;
 }

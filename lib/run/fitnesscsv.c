@@ -39,6 +39,8 @@ static const stFitnessColumn g_cols[] = {
     /* main-prim's chained trials (stage.chain_trials): their eq. 2.14 fitness and each solved */
     {ST_CSV_COL_REAL(R, f_chain, "best_F_chain"), P, ST_FITNESS_CHAIN, ST_FITNESS_ONE},
     {ST_CSV_COL_INT(R, chain_success[0], "best_c%d", 0), P, ST_FITNESS_CHAIN, ST_FITNESS_PER_CHAIN},
+    /* main-prim's varied trials (postures.vary_trials = extra): each solved */
+    {ST_CSV_COL_INT(R, varied_success[0], "best_v%d", 0), P, ST_FITNESS_VARIED, ST_FITNESS_PER_VARIED},
 };
 #undef R
 #undef P
@@ -65,8 +67,9 @@ void st_fitness_csv(const stFitnessLayout *l, stFitnessCsv *c) {
   ST_ASSERT(l->chain_trials >= 0 && l->chain_trials <= ST_CHAIN_TRIALS_MAX);
   memset(c, 0, sizeof *c);
   const unsigned stage = l->integrated ? ST_FITNESS_INTEGRATED : ST_FITNESS_PRIMITIVE;
-  const int has[] = {1, !l->integrated && l->handover, !l->integrated && l->chain_trials > 0};
-  const int count[] = {1, l->trials, ST_HANDOVER_TRIALS, l->chain_trials};
+  const int has[] = {1, !l->integrated && l->handover, !l->integrated && l->chain_trials > 0,
+                     !l->integrated && l->varied};
+  const int count[] = {1, l->trials, ST_HANDOVER_TRIALS, l->chain_trials, ST_VARIED_TRIALS};
   int k = 0;
   for (int i = 0; i < NCOLS; i++) {
     const stFitnessColumn *f = &g_cols[i];
