@@ -145,6 +145,10 @@ static void test_config_errors(void) {
     CU_ASSERT_EQUAL(st_config_load(path, &v, e, sizeof e), ST_OK);
     CU_ASSERT(v.postures_vary_starts == 1 && v.postures_vary_tilt == 10.0);
   }
+  /* the completion rule of chained trials needs them */
+  expect_error("[stage]\nchain_complete = fixed_chained\n", ST_ERR_RANGE,
+               ":2: key 'stage.chain_complete': it shapes the chained trials, which "
+               "stage.chain_trials = 0 turns off");
   /* the varied trials are main-prim's: refused without the drawn starts, or in simple-prim */
   expect_error("[postures]\nvary_trials = extra\n", ST_ERR_RANGE,
                ":2: key 'postures.vary_trials': it shapes the drawn starts, which "
@@ -353,8 +357,8 @@ static void test_config_stage_keys(void) {
               rows[i].stages);
     CU_ASSERT_EQUAL(got, rows[i].stages);
   }
-  /* every row of the table names a real key: 30 single keys (network 5, robot 1, scene 6,
-   * stage 18) plus the ga, caretaker, integrated, prediction, dynamics and posteval sections,
+  /* every row of the table names a real key: 31 single keys (network 5, robot 1, scene 6,
+   * stage 19) plus the ga, caretaker, integrated, prediction, dynamics and posteval sections,
    * the fitness section but reach_height, and the open, grasp and move postures, counted here
    * from the key table itself */
   int restricted = 0, whole = 0;
@@ -367,7 +371,7 @@ static void test_config_stage_keys(void) {
              (!strcmp(k->section, "fitness") && strcmp(k->name, "reach_height")) ||
              (!strcmp(k->section, "postures") && strncmp(k->name, "reach_", 6));
   }
-  CU_ASSERT_EQUAL(restricted, 30 + whole);
+  CU_ASSERT_EQUAL(restricted, 31 + whole);
 
   /* defaults pass every combination of stages */
   st_config_default(&c);

@@ -464,6 +464,44 @@ static void test_chain_fitness(void) {
  * without chained trials) plus (fixed trials solved / 16)^chain_gate times F_chain, and
  * F_chain is eq. 2.14 plus chain_progress times the mean over the chained trials of the
  * furthest word the caretaker said (reach 0 .. move 3), read here from each trial's trace. */
+/* stage.chain_complete: an evaluation of 16 fixed, 12 hand-over, 8 varied and 8 chained
+ * trials completes under all only with all 44 solved; under fixed_chained with the 16 and the 8
+ * chained solved, whatever the hand-over and varied ones; without chained trials (simple-prim
+ * generations of a prims run) both rules are every trial */
+static void test_evaluation_completes(void) {
+  stConfig all, fc;
+  st_config_default(&all);
+  st_config_default(&fc);
+  fc.stage_chain_complete = ST_CHAIN_COMPLETE_FIXED_CHAINED;
+  stEvaluation e;
+  memset(&e, 0, sizeof e);
+  e.ntrials = 44, e.handover_trials = 12, e.varied_trials = 8, e.chain_trials = 8;
+  for (int t = 0; t < 16; t++) e.success[t] = 1;
+  e.chain_successes = 8, e.handover_successes = 12, e.varied_successes = 8;
+  e.successes = 44;
+  CU_ASSERT(st_evaluation_completes(&all, &e) && st_evaluation_completes(&fc, &e));
+  e.handover_successes = 9, e.varied_successes = 5, e.successes = 38;
+  CU_ASSERT(!st_evaluation_completes(&all, &e) && st_evaluation_completes(&fc, &e));
+  e.chain_successes = 7, e.successes = 37;
+  CU_ASSERT(!st_evaluation_completes(&fc, &e));
+  e.chain_successes = 8, e.success[15] = 0, e.successes = 37;
+  CU_ASSERT(!st_evaluation_completes(&fc, &e));
+  /* simple-prim: 16 trials, no chained ones */
+  memset(&e, 0, sizeof e);
+  e.ntrials = 16, e.successes = 15;
+  for (int t = 0; t < 15; t++) e.success[t] = 1;
+  CU_ASSERT(!st_evaluation_completes(&all, &e) && !st_evaluation_completes(&fc, &e));
+  e.success[15] = 1, e.successes = 16;
+  CU_ASSERT(st_evaluation_completes(&all, &e) && st_evaluation_completes(&fc, &e));
+  /* stage.primitives = reach,grasp: 8 fixed trials and 8 chained */
+  memset(&e, 0, sizeof e);
+  e.ntrials = 16, e.chain_trials = 8, e.chain_successes = 8, e.successes = 16;
+  for (int t = 0; t < 4; t++) e.success[t] = e.success[8 + t] = 1;
+  CU_ASSERT(st_evaluation_completes(&fc, &e));
+  e.success[9] = 0, e.successes = 15;
+  CU_ASSERT(!st_evaluation_completes(&fc, &e));
+}
+
 static void test_chain_sum(void) {
   stConfig c;
   st_config_default(&c);
@@ -723,6 +761,7 @@ void st_suite_handover(void) {
   ST_ADD_TEST(test_handover_keys);
   ST_ADD_TEST(test_chain_fitness);
   ST_ADD_TEST(test_chain_sum);
+  ST_ADD_TEST(test_evaluation_completes);
   ST_ADD_TEST(test_rollin_elite_self);
   ST_ADD_TEST(test_rollin_elite_trace);
   ST_ADD_TEST(test_rollin_elite_refused);

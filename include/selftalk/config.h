@@ -109,6 +109,7 @@ extern "C" {
   INT(stage, chain_trials, 0, 0, 32, "main-prim adds this many chained trials (the integrated stage's table, the caretaker's words) scored by eq. 2.14 into F_chain (SPEC 12; 0: the thesis)") \
   ENUM(stage, chain_combine, 0, "harmonic|sum", "how F_chain joins main-prim's F: harmonic, a 5th term of the harmonic mean; sum, added to the harmonic mean of the four F_p, weighted by chain_gate (docs/PROTOCOL.md)") \
   REAL(stage, chain_gate, 0.0, 0.0, 64.0, "chain_combine = sum: F_chain is weighted by (fixed trials solved / 16)^chain_gate, so that selection keeps the thesis's 16 trials solved; 0: unweighted") \
+  ENUM(stage, chain_complete, 0, "all|fixed_chained", "what a genotype solves to count towards ga.success_genotypes with chained trials: all, every trial; fixed_chained, the fixed and the chained ones") \
   REAL(stage, chain_progress, 0.0, 0.0, 1000.0, "F_chain adds this times the mean of how far the caretaker got in the chained trials (reach 0 .. move 3): a shaping term, not the thesis's (docs/PROTOCOL.md); 0: eq. 2.14 alone") \
   BOOL(stage, handover_fallback, 0, "a hand-over trial whose chain never hands over: true, runs from the fixed posture; false, scores 0 over its length (a fallback it solves would reward a chain that breaks)") \
   ENUM(stage, handover_rollin, 0, "self|elite", "who acts a hand-over trial's roll-in: self, the individual's own chain; elite, the base network of genotype 0 (the previous generation's best) for every individual (docs/PROTOCOL.md)") \
@@ -289,6 +290,8 @@ enum { ST_FAIL_END_PENALTY = 0, ST_FAIL_END_EXACT, ST_FAIL_END_RUNOUT };
 enum { ST_CHAIN_HARMONIC = 0, ST_CHAIN_SUM };
 /* stage.handover_rollin */
 enum { ST_ROLLIN_SELF = 0, ST_ROLLIN_ELITE };
+/* stage.chain_complete */
+enum { ST_CHAIN_COMPLETE_ALL = 0, ST_CHAIN_COMPLETE_FIXED_CHAINED };
 /* postures.vary_trials */
 enum { ST_VARY_REPLACE = 0, ST_VARY_EXTRA };
 

@@ -230,6 +230,12 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
                            int individual, const stNetParams *net, stEvaluation *e, char *err,
                            size_t errsz);
 
+/* 1 when an evaluation counts towards ga.success_genotypes (the primitive stages' completion):
+ * it solved every trial it was evaluated on, or, with stage.chain_complete = fixed_chained and
+ * chained trials, its fixed trials and its chained trials (the hand-over and varied trials
+ * train the chain; the fixed ones are the thesis's, the chained ones the integration test's). */
+int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e);
+
 /* 1 when an evaluation of `stage` has hand-over trials rolled in by the elite (main-prim,
  * stage.handover, stage.handover_rollin = elite): st_stage_evaluate_rollin then needs the
  * elite's network. */

@@ -463,6 +463,17 @@ static double chain_weight(const stProtocol *p, const stEvaluation *e, int fixed
   return fixed ? pow((double)solved / fixed, p->cfg.stage_chain_gate) : 1.0;
 }
 
+int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e) {
+  ST_ASSERT(cfg && e);
+  ST_ASSERT(e->successes >= 0 && e->successes <= e->ntrials);
+  if (cfg->stage_chain_complete == ST_CHAIN_COMPLETE_ALL || e->chain_trials == 0)
+    return e->successes == e->ntrials;
+  int fixed = 0;
+  for (int t = 0; t < ST_PRIM_TRIALS; t++) fixed += e->success[t];
+  return fixed == e->ntrials - e->handover_trials - e->varied_trials - e->chain_trials &&
+         e->chain_successes == e->chain_trials;
+}
+
 int st_stage_rollin_elite(const stProtocol *p, stStage stage) {
   ST_ASSERT(p);
   return stage == ST_STAGE_MAIN && p->cfg.stage_handover &&

@@ -326,7 +326,7 @@ static stStatus make_ga(run *R, const stGenome *pop0, int npop0, char *err, size
 typedef struct genStats {
   int best;
   double mean, worst;
-  int all;      /* genotypes that solved every trial they were evaluated on */
+  int all;      /* genotypes that complete the stage (completes) */
   int unstable; /* trials the simulation gave up on */
 } genStats;
 
@@ -340,7 +340,7 @@ static genStats gen_stats(const run *R) {
       s.unstable += R->ieval[i].unstable;
     } else {
       s.unstable += R->eval[i].unstable;
-      s.all += R->eval[i].successes == R->eval[i].ntrials; /* every trial it is evaluated on */
+      s.all += st_evaluation_completes(R->cfg, &R->eval[i]);
     }
   }
   return s;
