@@ -1,16 +1,21 @@
 #!/usr/bin/env bash
-# Every committed primitive run (data/evolved/prims_s<N>/) holds what its fitness.csv says: the
-# best genotype of its final population, replayed from the simulation with the run's own
-# config.ini on all 16 main-prim trials (with the offsets of its last generation), solves all
-# 16 (issue 12, item 4). A run directory without its three files is an error; snapshots of runs
-# still going (prims_s<N>_run/, resumable) are not finished runs and are left out.
+# Every committed primitive run (data/evolved/prims_s<N>/, and the chain stage's continuations
+# of them, data/evolved/chain_s<N>/) holds what its fitness.csv says: the best genotype of its
+# final population, replayed from the simulation with the run's own config.ini on the thesis's
+# 16 main-prim trials (with the offsets of its last generation; a chain run's hand-over, varied
+# and chained trials are not among them), solves all 16 (issue 12, item 4; issue 23, item 4).
+# A run directory without its three files is an error; snapshots of runs still going
+# (*_run/, resumable) are not finished runs and are left out.
 set -uo pipefail
 APPDIR=${APPDIR:-apps}
 CHECK=check_populations
 source "$(dirname "$0")/check_lib.sh"
 
 runs=()
-for d in data/evolved/prims_s*/; do case "$d" in *_run/) ;; *) runs+=("$d") ;; esac; done
+for d in data/evolved/prims_s*/ data/evolved/chain_s*/; do
+  [ -d "$d" ] || continue
+  case "$d" in *_run/) ;; *) runs+=("$d") ;; esac
+done
 if [ ${#runs[@]} = 0 ] || [ ! -d "${runs[0]}" ]; then
   ko "no committed primitive run in data/evolved/prims_s*/ (expected at least one)"
 fi
