@@ -237,6 +237,20 @@ static void test_handover_fallback(void) {
   st_protocol_destroy(none);
 }
 
+/* eq. 2.3 from each trial run alone (sp: sums of S - P, bonus: 10 a success, n: the trials'
+ * lengths, expected want_n), F their harmonic mean (F_p floored at 0.001), against e */
+static void check_eq_2_3(const stEvaluation *e, const double sp[4], const double bonus[4],
+                         const long n[4], const long want_n[4]) {
+  double inv = 0.0;
+  for (int k = 0; k < 4; k++) {
+    CU_ASSERT_EQUAL(n[k], want_n[k]);
+    const double fp = bonus[k] + 100.0 / (double)n[k] * sp[k];
+    CU_ASSERT_DOUBLE_EQUAL(e->fp[k], fp, 1e-9 * fabs(fp));
+    inv += 1.0 / (fp > 0.001 ? fp : 0.001);
+  }
+  CU_ASSERT_DOUBLE_EQUAL(e->fitness, 4.0 / inv, 1e-9 * e->fitness);
+}
+
 /* The evaluation: F_p of eq. 2.3 over a primitive's fixed and hand-over trials (bonus 10 per
  * success, 100 / N_p times the sum of S - P, N_p the trials' full lengths), F their harmonic
  * mean, recomputed here from each trial run alone; the counts of the evaluation. */
@@ -275,17 +289,8 @@ static void test_handover_fitness(void) {
       handovers += r.handover_step >= 0;
     }
   }
-  CU_ASSERT_EQUAL(n[0], 400);
-  CU_ASSERT_EQUAL(n[1], 480);
-  CU_ASSERT_EQUAL(n[2], 640);
-  CU_ASSERT_EQUAL(n[3], 560);
-  double inv = 0.0;
-  for (int k = 0; k < 4; k++) {
-    const double fp = bonus[k] + 100.0 / (double)n[k] * sp[k];
-    CU_ASSERT_DOUBLE_EQUAL(e.fp[k], fp, 1e-9 * fabs(fp));
-    inv += 1.0 / (fp > 0.001 ? fp : 0.001);
-  }
-  CU_ASSERT_DOUBLE_EQUAL(e.fitness, 4.0 / inv, 1e-9 * e.fitness);
+  const long want_n[4] = {400, 480, 640, 560};
+  check_eq_2_3(&e, sp, bonus, n, want_n);
   CU_ASSERT_EQUAL(e.fp[0], e0.fp[0]); /* reach has no hand-over trials */
   CU_ASSERT(e.fp[3] != e0.fp[3]);
   CU_ASSERT_EQUAL(e.ntrials, 28);
@@ -346,17 +351,8 @@ static void test_varied_fitness(void) {
       vs += r.success;
     }
   }
-  CU_ASSERT_EQUAL(n[0], 400);
-  CU_ASSERT_EQUAL(n[1], 480);
-  CU_ASSERT_EQUAL(n[2], 640);
-  CU_ASSERT_EQUAL(n[3], 280);
-  double inv = 0.0;
-  for (int k = 0; k < 4; k++) {
-    const double fp = bonus[k] + 100.0 / (double)n[k] * sp[k];
-    CU_ASSERT_DOUBLE_EQUAL(e.fp[k], fp, 1e-9 * fabs(fp));
-    inv += 1.0 / (fp > 0.001 ? fp : 0.001);
-  }
-  CU_ASSERT_DOUBLE_EQUAL(e.fitness, 4.0 / inv, 1e-9 * e.fitness);
+  const long want_n[4] = {400, 480, 640, 280};
+  check_eq_2_3(&e, sp, bonus, n, want_n);
   CU_ASSERT(e.fp[0] == e0.fp[0] && e.fp[3] == e0.fp[3]); /* no varied reach or move trials */
   CU_ASSERT(e.ntrials == 24 && e.varied_trials == 8 && e.handover_trials == 0);
   CU_ASSERT(e0.varied_trials == 0 && eb.ntrials == 36 && eb.varied_trials == 8 && eb.handover_trials == 12);
