@@ -20,7 +20,7 @@ import csvschema  # noqa: E402
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 SUMMARY = csvschema.pick(csvschema.SUMMARY, "successes")
 TRIALS = csvschema.pick(csvschema.TRIALS, "heard", "open_jumped")
-FITNESS = csvschema.pick(csvschema.FITNESS, "best_t%d", "best_h%d", "best_F_chain", "best_c%d")
+FITNESS = csvschema.pick(csvschema.FITNESS, "best_t%d", "best_h%d", "best_F_chain", "best_c%d", "best_v%d")
 
 
 def die(msg):
@@ -76,6 +76,9 @@ def row(d):
     extra = ""
     if "best_h0" in last:
         extra += ", hand-over %d/12" % sum(int(last["best_h%d" % t]) for t in range(12))
+    if "best_v0" in last:
+        extra += ", varied %d/%d" % (sum(int(last["best_v%d" % t]) for t in range(csvschema.FITNESS_VARIED_TRIALS)),
+                                     csvschema.FITNESS_VARIED_TRIALS)
     if "best_F_chain" in last:
         n = len([k for k in last if re.match(r"best_c\d+$", k)])
         extra += ", chained %d/%d" % (sum(int(last["best_c%d" % t]) for t in range(n)), n)
