@@ -232,10 +232,10 @@ def plan_steps(a, meter):
         costs.append(("chain-stage individual", chain, primitives))
         steps.append(evolution("chain", a.runs, chain, chain_gens))
         notes.append("chain: expected and at most its cap, %d generations (%s): a chain run "
-                     "ends earlier only when ga.success_genotypes genotypes solve every trial, "
-                     "which no committed chain run has (data/evolved/chain_candidates, stopped "
-                     "by hand)." % (steps[-1].gens, "CHAIN_ARGS' --generations" if chain_gens
-                                    else "ga.max_generations"))
+                     "ends earlier when ga.success_genotypes genotypes of one generation solve "
+                     "the 16 fixed and all chained trials (stage.chain_complete), not yet "
+                     "measured often enough to price." % (steps[-1].gens, "CHAIN_ARGS' --generations"
+                                                          if chain_gens else "ga.max_generations"))
 
     _, integ_sets = step_args("INTEG_ARGS", a.integ_args)
     integ = meter.cost("integration", ["configs/prims.cfg", "--population", primitives,
