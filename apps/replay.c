@@ -472,8 +472,7 @@ int main(int argc, char **argv) {
   /* main-prim: 16..27 its hand-over trials (stage.handover), 28..35 its varied trials
    * (postures.vary_trials = extra) */
   const int handover = stage == ST_STAGE_MAIN && cfg.stage_handover;
-  const int varied = stage == ST_STAGE_MAIN && cfg.postures_vary_starts &&
-                     cfg.postures_vary_trials == ST_VARY_EXTRA;
+  const int varied = st_stage_varied(&cfg, stage);
   if (post < 0 && !integrated &&
       !(trial < ST_PRIM_TRIALS || (trial < ST_VARIED_FIRST && handover) ||
         (trial >= ST_VARIED_FIRST && trial < ST_MAIN_TRIALS_MAX && varied)))

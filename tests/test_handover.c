@@ -237,14 +237,37 @@ static void test_handover_fallback(void) {
   st_protocol_destroy(none);
 }
 
-/* eq. 2.3 from each trial run alone (sp: sums of S - P, bonus: 10 a success, n: the trials'
- * lengths, expected want_n), F their harmonic mean (F_p floored at 0.001), against e */
-static void check_eq_2_3(const stEvaluation *e, const double sp[4], const double bonus[4],
-                         const long n[4], const long want_n[4]) {
+/* eq. 2.3's sums per primitive, from trials run one by one */
+typedef struct handSums {
+  double sp[4], bonus[4]; /* sums of S - P; 10 a success */
+  long n[4];              /* the trials' lengths */
+  int successes;
+} handSums;
+
+/* runs trial i of protocol p alone (individual ind, generation gen) and adds it to h */
+static stTrialResult hand_trial(const stProtocol *p, stWorkspace *ws, const stNetParams *np,
+                                int gen, int ind, int i, handSums *h) {
+  stTrialSpec t;
+  st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
+  stTrialResult r;
+  char err[512] = "";
+  memset(&r, 0, sizeof r);
+  CU_ASSERT_EQUAL(st_trial_run(p, ws, &t, np, st_trial_seed_key(p, gen, ind, i), &r, NULL, NULL,
+                               err, sizeof err), ST_OK);
+  h->sp[t.primitive] += r.sum_s - r.sum_p;
+  h->n[t.primitive] += r.steps;
+  h->bonus[t.primitive] += 10.0 * r.success;
+  h->successes += r.success;
+  return r;
+}
+
+/* eq. 2.3 from the sums (lengths expected want_n), F their harmonic mean (F_p floored at
+ * 0.001), against e */
+static void check_eq_2_3(const stEvaluation *e, const handSums *h, const long want_n[4]) {
   double inv = 0.0;
   for (int k = 0; k < 4; k++) {
-    CU_ASSERT_EQUAL(n[k], want_n[k]);
-    const double fp = bonus[k] + 100.0 / (double)n[k] * sp[k];
+    CU_ASSERT_EQUAL(h->n[k], want_n[k]);
+    const double fp = h->bonus[k] + 100.0 / (double)h->n[k] * h->sp[k];
     CU_ASSERT_DOUBLE_EQUAL(e->fp[k], fp, 1e-9 * fabs(fp));
     inv += 1.0 / (fp > 0.001 ? fp : 0.001);
   }
@@ -266,20 +289,12 @@ static void test_handover_fitness(void) {
   stEvaluation e, e0;
   CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
-  double sp[4] = {0}, bonus[4] = {0};
-  long n[4] = {0};
-  int successes = 0, hs = 0, handovers = 0;
+  handSums h;
+  memset(&h, 0, sizeof h);
+  int hs = 0, handovers = 0;
   CU_ASSERT_EQUAL_FATAL(st_stage_trials(p, ST_STAGE_MAIN), 28);
   for (int i = 0; i < 28; i++) {
-    stTrialSpec t;
-    st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
-    stTrialResult r;
-    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, st_trial_seed_key(p, gen, ind, i), &r, NULL,
-                                       NULL, err, sizeof err), ST_OK);
-    sp[t.primitive] += r.sum_s - r.sum_p;
-    n[t.primitive] += r.steps;
-    bonus[t.primitive] += 10.0 * r.success;
-    successes += r.success;
+    const stTrialResult r = hand_trial(p, &ws, &np, gen, ind, i, &h);
     if (i < ST_PRIM_TRIALS) {
       CU_ASSERT_EQUAL(e.success[i], r.success);
       CU_ASSERT_EQUAL(e0.success[i], r.success);
@@ -290,14 +305,14 @@ static void test_handover_fitness(void) {
     }
   }
   const long want_n[4] = {400, 480, 640, 560};
-  check_eq_2_3(&e, sp, bonus, n, want_n);
+  check_eq_2_3(&e, &h, want_n);
   CU_ASSERT_EQUAL(e.fp[0], e0.fp[0]); /* reach has no hand-over trials */
   CU_ASSERT(e.fp[3] != e0.fp[3]);
   CU_ASSERT_EQUAL(e.ntrials, 28);
   CU_ASSERT_EQUAL(e0.ntrials, 16);
   CU_ASSERT_EQUAL(e0.handover_trials, 0);
   CU_ASSERT_EQUAL(e.handover_trials, 12);
-  CU_ASSERT_EQUAL(e.successes, successes);
+  CU_ASSERT_EQUAL(e.successes, h.successes);
   CU_ASSERT_EQUAL(e.handover_successes, hs);
   CU_ASSERT_EQUAL(e.handovers, handovers);
   st_workspace_free(&ws);
@@ -328,20 +343,12 @@ static void test_varied_fitness(void) {
   CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(both, &ws, ST_STAGE_MAIN, gen, ind, &np, &eb, err, sizeof err), ST_OK);
-  double sp[4] = {0}, bonus[4] = {0};
-  long n[4] = {0};
-  int successes = 0, vs = 0;
+  handSums h;
+  memset(&h, 0, sizeof h);
+  int vs = 0;
   for (int i = 0; i < 36; i++) {
     if (i >= 16 && i < 28) continue;
-    stTrialSpec t;
-    st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
-    stTrialResult r;
-    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, st_trial_seed_key(p, gen, ind, i), &r, NULL,
-                                       NULL, err, sizeof err), ST_OK);
-    sp[t.primitive] += r.sum_s - r.sum_p;
-    n[t.primitive] += r.steps;
-    bonus[t.primitive] += 10.0 * r.success;
-    successes += r.success;
+    const stTrialResult r = hand_trial(p, &ws, &np, gen, ind, i, &h);
     if (i < 16) {
       CU_ASSERT_EQUAL(e.success[i], r.success);
       CU_ASSERT_EQUAL(e0.success[i], r.success);
@@ -352,11 +359,11 @@ static void test_varied_fitness(void) {
     }
   }
   const long want_n[4] = {400, 480, 640, 280};
-  check_eq_2_3(&e, sp, bonus, n, want_n);
+  check_eq_2_3(&e, &h, want_n);
   CU_ASSERT(e.fp[0] == e0.fp[0] && e.fp[3] == e0.fp[3]); /* no varied reach or move trials */
   CU_ASSERT(e.ntrials == 24 && e.varied_trials == 8 && e.handover_trials == 0);
   CU_ASSERT(e0.varied_trials == 0 && eb.ntrials == 36 && eb.varied_trials == 8 && eb.handover_trials == 12);
-  CU_ASSERT_EQUAL(e.successes, successes);
+  CU_ASSERT_EQUAL(e.successes, h.successes);
   CU_ASSERT_EQUAL(e.varied_successes, vs);
   CU_ASSERT(vs > 0); /* prims_s2's best solves drawn starts too: the sums are not all failures */
   st_workspace_free(&ws);

@@ -89,6 +89,10 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
  * postures.vary_trials = extra (st_stage_trial_active says which of them run). */
 int st_stage_trials(const stProtocol *p, stStage stage);
 
+/* 1 when an evaluation of `stage` has the varied trials (main-prim, postures.vary_starts and
+ * postures.vary_trials = extra). */
+int st_stage_varied(const stConfig *cfg, stStage stage);
+
 /* 1 when an evaluation of `stage` runs trial `index` (< st_stage_trials): its primitive is one
  * p->primitives evaluates, and it is a fixed trial, a hand-over trial with stage.handover or a
  * varied trial with postures.vary_trials = extra. */
@@ -222,8 +226,9 @@ typedef struct stEvaluation {
  * primitives in p->primitives; a trial keeps its index, offsets and generator key, so a subset
  * scores each trial exactly as the full set does), then, in main-prim with stage.handover, its
  * 12 hand-over trials and, with postures.vary_trials = extra, its 8 varied trials: each counts
- * in its primitive's F_p as one more trial (eq. 2.3: its bonus, its S - P over its length); and, with stage.chain_trials, that many chained trials
- * (st_chain_def: the integrated stage's trials with the caretaker's words), whose eq. 2.14
+ * in its primitive's F_p as one more trial (eq. 2.3: its bonus, its S - P over its length);
+ * and, with stage.chain_trials, that many chained trials (st_chain_def: the integrated stage's
+ * trials with the caretaker's words), whose eq. 2.14
  * fitness is one more term of the harmonic mean. individual keys the dynamic solver's
  * generator. */
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,

@@ -359,15 +359,16 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
                       (uint64_t)index).key;
 }
 
-static int varied_extra(const stProtocol *p, stStage stage) {
-  return stage == ST_STAGE_MAIN && p->cfg.postures_vary_starts &&
-         p->cfg.postures_vary_trials == ST_VARY_EXTRA;
+int st_stage_varied(const stConfig *cfg, stStage stage) {
+  ST_ASSERT(cfg);
+  return stage == ST_STAGE_MAIN && cfg->postures_vary_starts &&
+         cfg->postures_vary_trials == ST_VARY_EXTRA;
 }
 
 int st_stage_trials(const stProtocol *p, stStage stage) {
   ST_ASSERT(p);
   ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
-  return varied_extra(p, stage)                            ? ST_MAIN_TRIALS_MAX
+  return st_stage_varied(&p->cfg, stage)                            ? ST_MAIN_TRIALS_MAX
          : stage == ST_STAGE_MAIN && p->cfg.stage_handover ? ST_VARIED_FIRST
                                                            : ST_PRIM_TRIALS;
 }
@@ -384,7 +385,7 @@ int st_stage_trial_active(const stProtocol *p, stStage stage, int i) {
   ST_ASSERT(p);
   ST_ASSERT(i >= 0 && i < st_stage_trials(p, stage));
   if (!(p->primitives >> st_trial_primitive(i) & 1u)) return 0;
-  return i < ST_PRIM_TRIALS || (i < ST_VARIED_FIRST ? p->cfg.stage_handover : varied_extra(p, stage));
+  return i < ST_PRIM_TRIALS || (i < ST_VARIED_FIRST ? p->cfg.stage_handover : st_stage_varied(&p->cfg, stage));
 }
 
 void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table) {

@@ -223,9 +223,7 @@ static int has_main(const run *R) {
 static int has_handover(const run *R) { return has_main(R) && R->cfg->stage_handover; }
 static int chain_trials(const run *R) { return has_main(R) ? R->cfg->stage_chain_trials : 0; }
 /* main-prim's varied trials (postures.vary_trials = extra) */
-static int has_varied(const run *R) {
-  return has_main(R) && R->cfg->postures_vary_starts && R->cfg->postures_vary_trials == ST_VARY_EXTRA;
-}
+static int has_varied(const run *R) { return has_main(R) && st_stage_varied(R->cfg, ST_STAGE_MAIN); }
 
 static stStatus start_files(run *R, char *err, size_t errsz) {
   stAtomicFile af;
