@@ -24,6 +24,17 @@ cut -d, -f1-4 "$FIG/prims_run/fitness.csv" > "$tmp/p2.csv"
 refuses "fig3_1: missing columns" "$tmp/p2.csv:1: header without best_bonus,stage (expected a primitive run's fitness.csv" fig_prim_fitness.py "$tmp/p2.csv"
 refuses "fig3_1: a missing run" "$tmp/none/fitness.csv: No such file or directory" fig_prim_fitness.py "$tmp/none"
 
+# ---- the chain stage (tools/fig_chain.py): the hand-made chain_run.csv's best solves the 16 fixed
+# trials in generations 0 and 2 (trial 13 fails in 1), grasp hand-overs 0, 1, 2 of 4 and chained
+# trials 0, 2, 3 of 8; and the committed hcg_p2_s1 screen (37 generations)
+draw fig_chain fig_chain.py "$FIG/chain_run.csv" data/evolved/chain_candidates/hcg_p2_s1 --label "hand-made" --label "hcg_p2_s1" -- \
+  "hand-made" "hcg_p2_s1" "fixed (16)" "grasp hand-over (4)" "varied starts (8)" "chained (8)" "F_chain"
+has fig_chain "fig_chain: $FIG/chain_run.csv: 3 generations, the best solved the 16 fixed trials in 2, a grasp hand-over in 2 (first 1), a chained trial in 2 (first 1, most 3 of 8)" \
+  "fig_chain: data/evolved/chain_candidates/hcg_p2_s1/fitness.csv: 37 generations, the best solved the 16 fixed trials in 35, a grasp hand-over in 33 (first 3), a chained trial in 35 (first 1, most 6 of 8)"
+refuses "fig_chain: a run without chained trials" "$FIG/prims_run/fitness.csv:1: header without best_c0 (expected a chain-stage run's fitness.csv" fig_chain.py "$FIG/prims_run"
+sed '3s/,75.25,/,y,/' "$FIG/chain_run.csv" > "$tmp/c1.csv"
+refuses "fig_chain: a bad number" "$tmp/c1.csv:3: best_F_chain 'y' (expected a finite number)" fig_chain.py "$tmp/c1.csv"
+
 # ---- Figs. 3.5-3.8: the hand-made integrated run, and a real 2-generation ST-CT run
 "$APPDIR/evolve" configs/integrated_stct.cfg --set "integrated.populations=data/evolved/simple_prim_s*.genome" \
   --set integrated.top=1 --set ga.population=4 --set ga.elites=1 --set ga.parents=2 --set integrated.steps=30 \

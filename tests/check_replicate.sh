@@ -91,6 +91,12 @@ if [ "$($REP jobs STEP=chain OUT=x PROTOCOL=chain | wc -l)" = 2 ] &&
    grep -q "posteval integration .*chain-s1/population.genome"; then
   ok "PROTOCOL=chain: the integration test takes the chain runs"
 else ko "PROTOCOL=chain integration"; fi
+# the chain stage's figure (tools/fig_chain.py) from the chain runs, only with PROTOCOL=chain
+if $REP -n OUT="$tmp/f" PROTOCOL=chain "$tmp/f/figures/.done" 2> /dev/null |
+     grep -q "tools/fig_chain.py $tmp/f/chain-s1 $tmp/f/chain-s2 -o $tmp/f/figures/fig_chain.png" &&
+   ! $REP -n OUT="$tmp/f" "$tmp/f/figures/.done" 2> /dev/null | grep -q fig_chain; then
+  ok "PROTOCOL=chain: the chain stage's figure from the chain runs"
+else ko "PROTOCOL=chain figure"; fi
 $REP OUT="$tmp/c" PROTOCOL=mine > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "PROTOCOL=mine: expected chain or thesis" "$tmp/e"; then
   ok "an unknown protocol is refused"; else ko "unknown protocol" "$(cat "$tmp/e")"; fi

@@ -220,6 +220,7 @@ FIG = $(PYTHON) tools/$(1).py $(2) -o $(OUT)/figures/$(3).png -o $(OUT)/figures/
 $(OUT)/figures/.done: $(PRIMITIVES) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selftalk.csv
 	@mkdir -p $(@D)
 	$(call FIG,fig_prim_fitness,$(PRIM_POPS:/population.genome=),fig3_1)
+	$(if $(filter chain,$(PROTOCOL)),$(call FIG,fig_chain,$(CHAIN_POPS:/population.genome=),fig_chain))
 	$(call FIG,fig_integration,$(OUT)/summary/integration.csv $(FIG3_3_ARGS),fig3_3)
 	$(foreach c,$(CONDS),$(call FIG,fig_int_fitness,$(SEEDS:%=$(OUT)/int-$(c)-s%),fig3_int_$(c));)
 	$(call FIG,fig_boxplot,$(OUT)/summary/robustness.csv --test robustness,fig3_4)
