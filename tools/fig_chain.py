@@ -14,7 +14,6 @@ trials"). Prints a line per run: generations, those whose best solved the 16 fix
 those with a grasp hand-over and with a chained trial solved. Default outputs fig_chain.png
 and fig_chain.svg.
 """
-import argparse
 import os
 import sys
 
@@ -116,24 +115,7 @@ def summary(run):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("runs", nargs="+")
-    ap.add_argument("--label", action="append", default=[], help="panel title, one per run")
-    figlib.add_out_argument(ap, "fig_chain")
-    a = ap.parse_args()
-    outs = figlib.outputs(a, "fig_chain")
-    if a.label and len(a.label) != len(a.runs):
-        figlib.die(f"{len(a.label)} --label for {len(a.runs)} runs (expected one per run)")
-    runs = [load(r) for r in a.runs]
-    for run in runs:
-        print(summary(run))
-    plt = figlib.pyplot()
-    fig, axes = plt.subplots(len(runs), 1, figsize=(10.5, 2.9 * len(runs) + 0.4), squeeze=False)
-    for i, run in enumerate(runs):
-        panel(axes[i][0], run, a.label[i] if a.label else run["path"])
-    axes[-1][0].set_xlabel("generation")
-    fig.tight_layout()
-    figlib.save(plt, fig, outs)
+    figlib.panel_per_run(__doc__, "fig_chain", load, summary, panel, 10.5, 2.9)
 
 
 if __name__ == "__main__":

@@ -11,7 +11,6 @@ generation, best, mean, best_bonus, stage and best_t0.. (docs/PROTOCOL.md, "Evol
 The maximum bonus is fitness.bonus (config.ini beside fitness.csv; 10 without one) times the
 number of best_tI columns (16: 160). Default outputs fig3_1.png and fig3_1.svg.
 """
-import argparse
 import os
 import sys
 
@@ -67,28 +66,15 @@ def panel(ax, run, label):
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
 
 
+def describe(run):
+    last = run["rows"][-1]
+    return (f"{figlib.PROG}: {run['path']}: {len(run['rows'])} generations, stage changes at "
+            f"{run['changes'] or 'none'}, last best {last['best']:.6g} bonus {last['best_bonus']:g}"
+            f" of {run['max_bonus']:g}")
+
+
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("runs", nargs="+")
-    ap.add_argument("--label", action="append", default=[], help="panel title, one per run")
-    figlib.add_out_argument(ap, "fig3_1")
-    a = ap.parse_args()
-    outs = figlib.outputs(a, "fig3_1")
-    if a.label and len(a.label) != len(a.runs):
-        figlib.die(f"{len(a.label)} --label for {len(a.runs)} runs (expected one per run)")
-    runs = [load(r) for r in a.runs]
-    for run in runs:
-        last = run["rows"][-1]
-        print(f"{figlib.PROG}: {run['path']}: {len(run['rows'])} generations, stage changes at "
-              f"{run['changes'] or 'none'}, last best {last['best']:.6g} bonus {last['best_bonus']:g}"
-              f" of {run['max_bonus']:g}")
-    plt = figlib.pyplot()
-    fig, axes = plt.subplots(len(runs), 1, figsize=(9.5, 2.8 * len(runs) + 0.4), squeeze=False)
-    for i, run in enumerate(runs):
-        panel(axes[i][0], run, a.label[i] if a.label else run["path"])
-    axes[-1][0].set_xlabel("generation")
-    fig.tight_layout()
-    figlib.save(plt, fig, outs)
+    figlib.panel_per_run(__doc__, "fig3_1", load, describe, panel, 9.5, 2.8)
 
 
 if __name__ == "__main__":

@@ -158,3 +158,28 @@ def save(plt, fig, outs):
         os.replace(tmp, o)
         print(f"{PROG}: wrote {o}")
     plt.close(fig)
+
+
+def panel_per_run(doc, default, load, describe, panel, width, height):
+    """the main of a figure with one panel per run: RUN... [--label NAME]... [-o FILE]...;
+    load(arg) reads a run (refusing what it cannot draw), describe(run) is the line printed
+    for it, panel(ax, run, title) draws it; height: inches per panel"""
+    import argparse
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--label", action="append", default=[], help="panel title, one per run")
+    add_out_argument(ap, default)
+    a = ap.parse_args()
+    outs = outputs(a, default)
+    if a.label and len(a.label) != len(a.runs):
+        die(f"{len(a.label)} --label for {len(a.runs)} runs (expected one per run)")
+    runs = [load(r) for r in a.runs]
+    for run in runs:
+        print(describe(run))
+    plt = pyplot()
+    fig, axes = plt.subplots(len(runs), 1, figsize=(width, height * len(runs) + 0.4), squeeze=False)
+    for i, run in enumerate(runs):
+        panel(axes[i][0], run, a.label[i] if a.label else run["path"])
+    axes[-1][0].set_xlabel("generation")
+    fig.tight_layout()
+    save(plt, fig, outs)
