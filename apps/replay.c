@@ -488,6 +488,11 @@ int main(int argc, char **argv) {
   if (index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
   if (index < 0) index = pick_index(&set, genome, generation);
   if (generation < 0) generation = set.generation[index] >= 0 ? set.generation[index] : 0;
+  if (post < 0 && !integrated && trial >= ST_VARIED_FIRST && st_vary_replacing(&cfg, generation))
+    app_die(prog, "--trial %d: generation %d runs no varied trials (its open and grasp trials start "
+            "from the drawn postures instead: postures.vary_replace_generations = %d); expected "
+            "--generation %d or later", trial, generation, cfg.postures_vary_replace_generations,
+            cfg.postures_vary_replace_generations);
   fprintf(stderr, "replay: genotype %d of %s, trial offsets of generation %d\n", index, genome,
           generation);
   stProtocol *p = NULL;

@@ -146,6 +146,31 @@ else
   ko "postures.vary_starts" "$(tail -2 "$tmp/v1.log") $(cat "$tmp/vreplay.txt" "$tmp/vreplay.err" | tail -3)"
 fi
 
+# postures.vary_replace_generations = 1 with extra: generation 0 is replace's (the row of the
+# replace run above: the same seed, population and trials), generation 1 extra's (its varied
+# trials run); the progress line says which; a varied trial of generation 0 is not replayed
+"$EV" configs/main_prim.cfg "${vary[@]}" --set postures.vary_starts=true --set postures.vary_trials=extra \
+  --set postures.vary_replace_generations=1 --threads 2 --out "$tmp/vs" > "$tmp/vs.log" 2>&1
+"$APPDIR/replay" "$tmp/vs/population.genome" "$tmp/vs/config.ini" --trial 28 --generation 0 > /dev/null 2> "$tmp/vs0.err"
+vs0=$?
+"$APPDIR/replay" "$tmp/vs/population.genome" "$tmp/vs/config.ini" --trial 28 --generation 1 > /dev/null 2>&1
+if [ $vs0 != 0 ] && [ $? = 0 ] && grep -q "generation 0 runs no varied trials .*expected --generation 1 or later" "$tmp/vs0.err" &&
+   grep -q "^gen    0 .*(varied: replacing 8)" "$tmp/vs.log" && grep -q "^gen    1 .*(varied [0-8]/8)" "$tmp/vs.log" &&
+   python3 - "$tmp/v1/fitness.csv" "$tmp/vs/fitness.csv" <<'PY'
+import csv, sys
+rep, sch = (list(csv.DictReader(open(p))) for p in sys.argv[1:])
+same = [k for k in rep[0] if k in sch[0]]
+v0 = [sch[0]["best_v%d" % t] for t in range(8)]
+print("generation 0 alike in %s; varied columns %s" % (all(rep[0][k] == sch[0][k] for k in same), v0))
+sys.exit(0 if all(rep[0][k] == sch[0][k] for k in same) and v0 == ["0"] * 8 and
+         rep[1]["best"] != sch[1]["best"] else 1)
+PY
+then
+  ok "postures.vary_replace_generations: generation 0 as replace, generation 1 with the varied trials"
+else
+  ko "postures.vary_replace_generations" "$(tail -2 "$tmp/vs.log") $(cat "$tmp/vs0.err")"
+fi
+
 # stage.handover and stage.chain_trials (SPEC 12): main-prim's hand-over trials (open's, here)
 # and chained trials; thread-independent; the hand-over trials replayed one by one (the fixed
 # and hand-over trials' shares of F_open, summed, are the best's fitness, the successes those of

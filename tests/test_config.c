@@ -162,6 +162,15 @@ static void test_config_errors(void) {
                ST_ERR_RANGE, ":5: key 'postures.vary_trials': extra adds main-prim trials, and "
                "stage.stages = prims runs another stage (expected stage.stages = main_prim, or "
                "postures.vary_trials = replace)");
+  /* replace before extra: refused without the drawn starts, and with replace throughout */
+  expect_error("[postures]\nvary_replace_generations = 40\n", ST_ERR_RANGE,
+               ":2: key 'postures.vary_replace_generations': it shapes the drawn starts, which "
+               "postures.vary_starts = false turns off");
+  expect_error("[stage]\nstages = main_prim\n[postures]\nvary_starts = true\n"
+               "vary_replace_generations = 40\n", ST_ERR_RANGE,
+               ":5: key 'postures.vary_replace_generations': 40 generations of replace before "
+               "extra, and postures.vary_trials = replace replaces throughout (expected "
+               "postures.vary_trials = extra, or the key left out)");
   expect_error("[stage]\nprimitives = reach,grasp,lift\n", ST_ERR_RANGE,
                ":2: key 'stage.primitives': 'reach,grasp,lift' is not a list of primitives "
                "(expected a comma-separated subset of reach,open,grasp,move)");

@@ -489,6 +489,13 @@ static void test_evaluation_completes(void) {
   CU_ASSERT(!st_evaluation_completes(&fc, &e));
   e.chain_successes = 8, e.success[15] = 0, e.successes = 37;
   CU_ASSERT(!st_evaluation_completes(&fc, &e));
+  /* postures.vary_replace_generations: the 16 and the 8 chained solved, but the open and grasp
+   * trials from drawn starts (no varied trials run), under fixed_chained: not the thesis's 16 */
+  e.success[15] = 1, e.varied_trials = 0, e.varied_successes = 0, e.ntrials = 36;
+  e.successes = 16 + 9 + 8;
+  CU_ASSERT(st_evaluation_completes(&fc, &e));
+  e.fixed_drawn = 8;
+  CU_ASSERT(!st_evaluation_completes(&fc, &e));
   /* simple-prim: 16 trials, no chained ones */
   memset(&e, 0, sizeof e);
   e.ntrials = 16, e.successes = 15;

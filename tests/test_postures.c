@@ -597,9 +597,9 @@ static void test_trial_varied_extra(void) {
   CU_ASSERT_EQUAL(st_stage_trials(both, ST_STAGE_MAIN), 36);
   int active = 0, active_both = 0;
   for (int i = 0; i < 36; i++) {
-    active += st_stage_trial_active(extra, ST_STAGE_MAIN, i);
-    active_both += st_stage_trial_active(both, ST_STAGE_MAIN, i);
-    CU_ASSERT_EQUAL(st_stage_trial_active(extra, ST_STAGE_MAIN, i), i < 16 || i >= 28);
+    active += st_stage_trial_active(extra, ST_STAGE_MAIN, 0, i);
+    active_both += st_stage_trial_active(both, ST_STAGE_MAIN, 0, i);
+    CU_ASSERT_EQUAL(st_stage_trial_active(extra, ST_STAGE_MAIN, 0, i), i < 16 || i >= 28);
   }
   CU_ASSERT_EQUAL(active, 24);
   CU_ASSERT_EQUAL(active_both, 36);
@@ -631,6 +631,54 @@ static void test_trial_varied_extra(void) {
   st_protocol_destroy(fixed);
   st_protocol_destroy(extra);
   st_protocol_destroy(both);
+}
+
+/* postures.vary_replace_generations = 2 with extra: generations 0 and 1 are replace's, bit for
+ * bit (the open and grasp trials from the drawn starts, no varied trials), generations 2 and 3
+ * extra's (the 16 from their fixed starts, the varied trials 28..35) */
+static void test_trial_vary_schedule(void) {
+  stConfig c;
+  st_config_default(&c);
+  c.run_seed = 5;
+  c.stage_stages = ST_STAGES_MAIN;
+  c.postures_vary_starts = 1;
+  stProtocol *replace = NULL, *extra = NULL, *sched = NULL;
+  char err[512] = "";
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &replace, err, sizeof err), ST_OK);
+  c.postures_vary_trials = ST_VARY_EXTRA;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &extra, err, sizeof err), ST_OK);
+  c.postures_vary_replace_generations = 2;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &sched, err, sizeof err), ST_OK);
+  CU_ASSERT(st_vary_replacing(&replace->cfg, 7) && !st_vary_replacing(&extra->cfg, 0));
+  CU_ASSERT(st_vary_replacing(&sched->cfg, 0) && st_vary_replacing(&sched->cfg, 1));
+  CU_ASSERT(!st_vary_replacing(&sched->cfg, 2) && !st_vary_replacing(&sched->cfg, 3));
+  CU_ASSERT_EQUAL(st_stage_trials(sched, ST_STAGE_MAIN), 36); /* the columns of extra throughout */
+  for (int gen = 0; gen < 4; gen++) {
+    const stProtocol *like = gen < 2 ? replace : extra;
+    int active = 0, drawn = 0;
+    for (int i = 0; i < 36; i++) {
+      const int on = st_stage_trial_active(sched, ST_STAGE_MAIN, gen, i);
+      active += on;
+      CU_ASSERT_EQUAL(on, i < 16 || (gen >= 2 && i >= 28));
+      if (!on || i >= 16) continue;
+      stTrialSpec a, b;
+      st_trial_spec(like, ST_STAGE_MAIN, gen, i, &a);
+      st_trial_spec(sched, ST_STAGE_MAIN, gen, i, &b);
+      CU_ASSERT(memcmp(&a, &b, sizeof a) == 0);
+      drawn += b.start_draws > 0;
+    }
+    CU_ASSERT_EQUAL(active, gen < 2 ? 16 : 24);
+    CU_ASSERT_EQUAL(drawn, gen < 2 ? 8 : 0); /* open and grasp k = 0..3 */
+    for (int i = 28; gen >= 2 && i < 36; i++) {
+      stTrialSpec a, b;
+      st_trial_spec(extra, ST_STAGE_MAIN, gen, i, &a);
+      st_trial_spec(sched, ST_STAGE_MAIN, gen, i, &b);
+      CU_ASSERT(memcmp(&a, &b, sizeof a) == 0);
+    }
+  }
+  st_protocol_destroy(replace);
+  st_protocol_destroy(extra);
+  st_protocol_destroy(sched);
 }
 
 static void test_postures_move(void) {
@@ -732,6 +780,7 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_postures_variation_draw);
   ST_ADD_TEST(test_trial_varied_starts);
   ST_ADD_TEST(test_trial_varied_extra);
+  ST_ADD_TEST(test_trial_vary_schedule);
   ST_ADD_TEST(test_postures_move);
   ST_ADD_TEST(test_posture_check_rejects);
   ST_ADD_TEST(test_posture_errors);

@@ -157,6 +157,7 @@ extern "C" {
   REAL(postures, ik_wrist_pitch, -30.0, -90.0, 0.0, "open, grasp, move: wrist pitch the inverse kinematics starts from, deg") \
   BOOL(postures, vary_starts, 0, "open and grasp trials of the primitive stages start from postures drawn per generation and trial (docs/PROTOCOL.md, Varied starts); false: the fixed postures") \
   ENUM(postures, vary_trials, 0, "replace|extra", "vary_starts: replace, the open and grasp trials start from drawn postures; extra, they keep theirs and main-prim has 8 trials more from drawn ones (PROTOCOL.md)") \
+  INT(postures, vary_replace_generations, 0, 0, 1000000, "vary_trials = extra: main-prim's first N generations run as replace, no genotype completing (PROTOCOL.md); 0: extra from the first") \
   REAL(postures, vary_offset, 0.02, 0.0, 0.1, "vary_starts: the palm moves horizontally, in its own frame, by up to this, m (uniform in a disc; the reach trials' object offset is +-2 cm)") \
   REAL(postures, vary_tilt, 20.0, 0.0, 45.0, "vary_starts: the palm normal tilts from straight down by up to this, deg (angle uniform, direction uniform)") \
   REAL(postures, vary_torso_pitch, 20.0, -22.0, 70.0, "vary_starts: the IK start's torso pitch is uniform between ik_torso_pitch and this, deg") \

@@ -90,13 +90,20 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
 int st_stage_trials(const stProtocol *p, stStage stage);
 
 /* 1 when an evaluation of `stage` has the varied trials (main-prim, postures.vary_starts and
- * postures.vary_trials = extra). */
+ * postures.vary_trials = extra), i.e. its fitness.csv has their columns; in the generations
+ * st_vary_replacing names they do not run. */
 int st_stage_varied(const stConfig *cfg, stStage stage);
 
-/* 1 when an evaluation of `stage` runs trial `index` (< st_stage_trials): its primitive is one
- * p->primitives evaluates, and it is a fixed trial, a hand-over trial with stage.handover or a
- * varied trial with postures.vary_trials = extra. */
-int st_stage_trial_active(const stProtocol *p, stStage stage, int index);
+/* 1 when the open and grasp fixed trials of `generation` start from drawn postures instead of
+ * theirs: postures.vary_starts with vary_trials = replace, or with extra in the first
+ * postures.vary_replace_generations generations. */
+int st_vary_replacing(const stConfig *cfg, int generation);
+
+/* 1 when an evaluation of `stage` in `generation` runs trial `index` (< st_stage_trials): its
+ * primitive is one p->primitives evaluates, and it is a fixed trial, a hand-over trial with
+ * stage.handover or a varied trial with postures.vary_trials = extra outside the generations
+ * of postures.vary_replace_generations. */
+int st_stage_trial_active(const stProtocol *p, stStage stage, int generation, int index);
 
 /* The primitive of trial `index` of a stage (fixed, hand-over or varied). */
 int st_trial_primitive(int index);
@@ -208,6 +215,7 @@ typedef struct stEvaluation {
                                   with stage.handover main-prim's hand-over trials too */
   int successes;               /* trials succeeded (hand-over trials included) */
   uint8_t success[ST_PRIM_TRIALS]; /* the fixed trials */
+  int fixed_drawn;             /* ... of them started from a drawn posture (st_vary_replacing) */
   int unstable;                /* trials that diverged */
   int handover_trials;         /* hand-over trials evaluated (0: stage.handover off) */
   int handover_successes;      /* ... succeeded */
@@ -237,8 +245,9 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
 
 /* 1 when an evaluation counts towards ga.success_genotypes (the primitive stages' completion):
  * it solved every trial it was evaluated on, or, with stage.chain_complete = fixed_chained and
- * chained trials, its fixed trials and its chained trials (the hand-over and varied trials
- * train the chain; the fixed ones are the thesis's, the chained ones the integration test's). */
+ * chained trials, its fixed trials from their fixed starts (fixed_drawn 0) and its chained
+ * trials (the hand-over and varied trials train the chain; the fixed ones are the thesis's, the
+ * chained ones the integration test's). */
 int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e);
 
 /* 1 when an evaluation of `stage` has hand-over trials rolled in by the elite (main-prim,

@@ -525,6 +525,13 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
              st_config_enum_name("stage", "stages", c->stage_stages));
     return st_config_find("postures", "vary_trials");
   }
+  /* a schedule of replace, then extra: only extra has a second phase */
+  if (c->postures_vary_replace_generations > 0 && c->postures_vary_trials != ST_VARY_EXTRA) {
+    snprintf(msg, n, "%d generations of replace before extra, and postures.vary_trials = replace "
+             "replaces throughout (expected postures.vary_trials = extra, or the key left out)",
+             c->postures_vary_replace_generations);
+    return st_config_find("postures", "vary_replace_generations");
+  }
   /* the elite is genotype 0, which st_ga_next fills with the previous generation's best only
    * when it keeps elites */
   if (c->stage_handover_rollin == ST_ROLLIN_ELITE && c->ga_elites < 1) {

@@ -84,7 +84,7 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
   stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_TRIAL, (uint64_t)generation, 0, (uint64_t)index);
   st_scene_object(&p->scene, t->k, t->primitive == ST_PRIM_REACH, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
-  if (varied || (c->postures_vary_starts && c->postures_vary_trials == ST_VARY_REPLACE &&
+  if (varied || (st_vary_replacing(c, generation) &&
                  (t->primitive == ST_PRIM_OPEN || t->primitive == ST_PRIM_GRASP)))
     vary_start(p, generation, t);
   if (stage == ST_STAGE_SIMPLE) {
@@ -359,6 +359,13 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
                       (uint64_t)index).key;
 }
 
+int st_vary_replacing(const stConfig *cfg, int generation) {
+  ST_ASSERT(cfg);
+  ST_ASSERT(generation >= 0);
+  return cfg->postures_vary_starts && (cfg->postures_vary_trials == ST_VARY_REPLACE ||
+                                       generation < cfg->postures_vary_replace_generations);
+}
+
 int st_stage_varied(const stConfig *cfg, stStage stage) {
   ST_ASSERT(cfg);
   return stage == ST_STAGE_MAIN && cfg->postures_vary_starts &&
@@ -381,11 +388,14 @@ int st_trial_primitive(int i) {
                                : ST_PRIM_OPEN + (i - ST_VARIED_FIRST) / ST_NPOSTURE;
 }
 
-int st_stage_trial_active(const stProtocol *p, stStage stage, int i) {
+int st_stage_trial_active(const stProtocol *p, stStage stage, int generation, int i) {
   ST_ASSERT(p);
+  ST_ASSERT(generation >= 0);
   ST_ASSERT(i >= 0 && i < st_stage_trials(p, stage));
   if (!(p->primitives >> st_trial_primitive(i) & 1u)) return 0;
-  return i < ST_PRIM_TRIALS || (i < ST_VARIED_FIRST ? p->cfg.stage_handover : st_stage_varied(&p->cfg, stage));
+  if (i < ST_PRIM_TRIALS) return 1;
+  if (i < ST_VARIED_FIRST) return p->cfg.stage_handover;
+  return st_stage_varied(&p->cfg, stage) && !st_vary_replacing(&p->cfg, generation);
 }
 
 void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table) {
@@ -396,7 +406,8 @@ void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialT
   table->generation = generation;
   table->n = st_stage_trials(p, stage);
   for (int i = 0; i < table->n; i++)
-    if (st_stage_trial_active(p, stage, i)) st_trial_spec(p, stage, generation, i, &table->t[i]);
+    if (st_stage_trial_active(p, stage, generation, i))
+      st_trial_spec(p, stage, generation, i, &table->t[i]);
 }
 
 /* the workspace's table for the generation, built when it holds another (or none) */
@@ -471,7 +482,9 @@ int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e) {
     return e->successes == e->ntrials;
   int fixed = 0;
   for (int t = 0; t < ST_PRIM_TRIALS; t++) fixed += e->success[t];
-  return fixed == e->ntrials - e->handover_trials - e->varied_trials - e->chain_trials &&
+  /* the thesis's fixed trials, from their fixed starts */
+  return e->fixed_drawn == 0 &&
+         fixed == e->ntrials - e->handover_trials - e->varied_trials - e->chain_trials &&
          e->chain_successes == e->chain_trials;
 }
 
@@ -507,7 +520,7 @@ stStatus st_stage_evaluate_rollin(const stProtocol *p, stWorkspace *ws, stStage 
   const stTrialTable *tab = generation_table(p, ws, stage, generation, err, errsz);
   if (!tab) return ST_ERR_NOMEM;
   for (int i = 0; i < tab->n; i++) {
-    if (!st_stage_trial_active(p, stage, i)) continue;
+    if (!st_stage_trial_active(p, stage, generation, i)) continue;
     stTrialResult r;
     stStatus st = add_trial(p, ws, &tab->t[i], individual, net, rollin, &sums, &r, err, errsz);
     if (st) return st;
@@ -516,6 +529,7 @@ stStatus st_stage_evaluate_rollin(const stProtocol *p, stWorkspace *ws, stStage 
     e->unstable += r.unstable;
     if (i < ST_PRIM_TRIALS) {
       e->success[i] = (uint8_t)r.success;
+      e->fixed_drawn += tab->t[i].start_draws > 0;
     } else if (i >= ST_VARIED_FIRST) {
       e->varied_trials++;
       e->varied_successes += r.success;

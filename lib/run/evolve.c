@@ -412,6 +412,8 @@ static void progress(const run *R, int gen, const genStats *s) {
     if (be->varied_trials)
       m += snprintf(ho + m, sizeof ho - (size_t)m, " (varied %d/%d)", be->varied_successes,
                     be->varied_trials);
+    else if (be->fixed_drawn && has_varied(R)) /* postures.vary_replace_generations */
+      m += snprintf(ho + m, sizeof ho - (size_t)m, " (varied: replacing %d)", be->fixed_drawn);
     if (be->chain_trials)
       snprintf(ho + m, sizeof ho - (size_t)m, " (chained %d/%d, F_chain %.1f)", be->chain_successes,
                be->chain_trials, be->f_chain);
