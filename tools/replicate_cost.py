@@ -227,11 +227,15 @@ def plan_steps(a, meter):
     if a.protocol == "chain":
         chain_gens, chain_sets = step_args("CHAIN_ARGS", a.chain_args)
         primitives = need_file(a.chain_pop, "COST_CHAIN_POP")
-        chain = meter.cost("chain", ["configs/chain_prim.cfg", "--population", primitives,
-                                     "--spread"] + chain_sets, n)
+        # priced at the run's last generation: past postures.vary_replace_generations, where
+        # the varied trials run too (the dearer phase)
+        chain_args = ["configs/chain_prim.cfg", "--population", primitives, "--spread"]
+        last = (chain_gens or meter.run(chain_args + chain_sets, 0)[1]["generations"]) - 1
+        chain = meter.cost("chain", chain_args + ["--generation", str(last)] + chain_sets, n)
         costs.append(("chain-stage individual", chain, primitives))
         steps.append(evolution("chain", a.runs, chain, chain_gens))
-        notes.append("chain: expected and at most its cap, %d generations (%s): a chain run "
+        notes.append("chain: priced at its last generation's trials; expected and at most its "
+                     "cap, %d generations (%s): a chain run "
                      "ends earlier when ga.success_genotypes genotypes of one generation solve "
                      "the 16 fixed and all chained trials (stage.chain_complete), not yet "
                      "measured often enough to price." % (steps[-1].gens, "CHAIN_ARGS' --generations"

@@ -52,9 +52,11 @@ KEYS_handover_elite_chain_gated := $(KEYS_handover_chain_gated) --set stage.hand
 # configuration no fixed start has (docs/PROTOCOL.md, "Screening chaining candidates")
 KEYS_handover_chain_gated_vary := $(KEYS_handover_chain_gated) --set postures.vary_starts=true
 KEYS_handover_chain_gated_vary_extra := $(KEYS_handover_chain_gated_vary) --set postures.vary_trials=extra
+KEYS_handover_chain_gated_vary_sched := $(KEYS_handover_chain_gated_vary_extra) \
+  --set postures.vary_replace_generations=30
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
   chain_gated handover_chain_gated handover_chain_sum handover_chain_gated_mut \
-  handover_chain_gated_flex handover_chain_gated_highflex handover_chain_gated_vary handover_chain_gated_vary_extra \
+  handover_chain_gated_flex handover_chain_gated_highflex handover_chain_gated_vary handover_chain_gated_vary_extra handover_chain_gated_vary_sched \
   handover_elite_chain_gated
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
