@@ -22,8 +22,7 @@ import csvschema  # noqa: E402
 import figlib  # noqa: E402
 
 figlib.PROG = "fig_chain"
-T, H, C, V = (next(iter(csvschema.pick(csvschema.FITNESS, n))) for n in
-              ("best_t%d", "best_h%d", "best_c%d", "best_v%d"))
+T, H, C, V = csvschema.pick(csvschema.FITNESS, "best_t%d", "best_h%d", "best_c%d", "best_v%d")
 NFIXED = csvschema.FITNESS_PRIMITIVE_TRIALS
 NHAND = csvschema.FITNESS_HANDOVER_TRIALS
 NPOST = NHAND // 3  # hand-over trials per primitive: open, grasp, move in that order
