@@ -173,6 +173,25 @@ if grep -qF '| `handover-pop-s1` | 3 | 40 s | 15/16, hand-over 2/12 | 3 of 12 | 
 else
   ko "screen_report: $out"
 fi
+# a screen with varied trials: before postures.vary_replace_generations (5 here) the varied
+# columns are 0 because the drawn starts replace open's and grasp's, which the row says; from
+# it, the varied trials solved (3 of 8 in the hand-made last row)
+v="$t/screen/sched-pop-s1"
+mkdir -p "$v"
+{ printf 'generation,best,mean,worst'; for k in $(seq 0 15); do printf ',best_t%d' "$k"; done
+  for k in $(seq 0 7); do printf ',best_v%d' "$k"; done; echo
+  for g in 0 1 2; do printf '%d,1,1,1' "$g"; for k in $(seq 0 15); do printf ',1'; done
+    for k in $(seq 0 7); do printf ',%d' $((g == 2 && k < 3)); done; echo; done; } > "$v/fitness.csv"
+printf '[postures]\nvary_replace_generations = 5\n' > "$v/config.ini"
+out5=$(python3 tools/screen_report.py "$v" 2>&1)
+sed -i 's/= 5$/= 2/' "$v/config.ini"
+out2=$(python3 tools/screen_report.py "$v" 2>&1)
+if grep -qF '| 16/16, varied: replacing (open and grasp from drawn starts) |' <<<"$out5" &&
+   grep -qF '| 16/16, varied 3/8 |' <<<"$out2"; then
+  ok "screen_report: varied trials, and the generations the drawn starts replace"
+else
+  ko "screen_report varied: $out5 $out2"
+fi
 python3 tools/screen_report.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
 [ $rc = 1 ] && grep -q "screen_report: $t/nope/fitness.csv" "$t/err" && ok "screen_report: a missing screen named" || ko "screen_report missing rc=$rc $(cat "$t/err")"
 # ---- tools/csvschema.py: the library's column tables as the tools take them

@@ -67,6 +67,20 @@ def cost(d):
     return sum(s for f, _, s in sessions if f is not None) / gens if gens else None
 
 
+def replace_generations(d):
+    """postures.vary_replace_generations of the run's config.ini (0 without one): before it
+    the varied columns are 0 because the drawn starts replace open's and grasp's"""
+    try:
+        with open(os.path.join(d, "config.ini")) as f:
+            for line in f:
+                m = re.match(r"\s*vary_replace_generations\s*=\s*(\d+)", line)
+                if m:
+                    return int(m.group(1))
+    except OSError:
+        pass
+    return 0
+
+
 def row(d):
     rows = read_csv(os.path.join(d, "fitness.csv"))
     if not rows:
@@ -76,7 +90,9 @@ def row(d):
     extra = ""
     if "best_h0" in last:
         extra += ", hand-over %d/12" % sum(int(last["best_h%d" % t]) for t in range(12))
-    if "best_v0" in last:
+    if "best_v0" in last and int(last["generation"]) < replace_generations(d):
+        extra += ", varied: replacing (open and grasp from drawn starts)"
+    elif "best_v0" in last:
         extra += ", varied %d/%d" % (sum(int(last["best_v%d" % t]) for t in range(csvschema.FITNESS_VARIED_TRIALS)),
                                      csvschema.FITNESS_VARIED_TRIALS)
     if "best_F_chain" in last:
