@@ -194,6 +194,27 @@ else
 fi
 python3 tools/screen_report.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
 [ $rc = 1 ] && grep -q "screen_report: $t/nope/fitness.csv" "$t/err" && ok "screen_report: a missing screen named" || ko "screen_report missing rc=$rc $(cat "$t/err")"
+# tools/runconfig.py, the tools' one reader of a run's config.ini: a key in its own section
+# (not another section's key of the same name), the default without the file or the key, and a
+# value it cannot convert named with FILE:LINE
+r="$t/rc"; mkdir -p "$r"
+printf '[stage]\nsuccess_genotypes = 7\n[ga]\n; note\nsuccess_genotypes = 3  # three\n[fitness]\nbonus = x\n' > "$r/config.ini"
+if out=$(python3 - "$r" "$t/none" <<'PY'
+import sys
+sys.path.insert(0, "tools")
+import runconfig
+got = [runconfig.value(sys.argv[1], "ga", "success_genotypes", 5, int),
+       runconfig.value(sys.argv[2], "ga", "success_genotypes", 5, int),
+       runconfig.value(sys.argv[1], "ga", "population", 100, int)]
+try:
+    runconfig.value(sys.argv[1], "fitness", "bonus", 10.0, float)
+    err = "accepted"
+except ValueError as e:
+    err = str(e)
+print(got, err)
+sys.exit(0 if got == [3, 5, 100] and err == sys.argv[1] + "/config.ini:7: fitness.bonus 'x' (expected a number)" else 1)
+PY
+); then ok "runconfig: a key of a run's config.ini ($out)"; else ko "runconfig" "$out"; fi
 # ---- tools/csvschema.py: the library's column tables as the tools take them
 # generated from the C tables: the committed file is what tools/csvschema.c prints
 gen="${BUILD:-build}/csvschema"

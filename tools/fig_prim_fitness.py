@@ -17,6 +17,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
 import figlib  # noqa: E402
+import runconfig  # noqa: E402
 
 figlib.PROG = "fig_prim_fitness"
 COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "best", "mean", "best_bonus", "stage")
@@ -25,21 +26,10 @@ TRIAL = next(iter(csvschema.pick(csvschema.FITNESS, "best_t%d")))  # one column 
 
 def config_bonus(run_dir):
     """fitness.bonus of the run's config.ini, 10 (the thesis's) without one"""
-    section = None
     try:
-        with open(os.path.join(run_dir, "config.ini")) as f:
-            for n, line in enumerate(f, start=1):
-                line = line.split("#")[0].split(";")[0].strip()
-                if line.startswith("["):
-                    section = line.strip("[]").strip()
-                elif section == "fitness" and line.replace(" ", "").startswith("bonus="):
-                    try:
-                        return float(line.split("=", 1)[1])
-                    except ValueError:
-                        figlib.die(f"{f.name}:{n}: fitness.bonus '{line}' (expected a number)")
-    except OSError:
-        pass
-    return 10.0
+        return runconfig.value(run_dir, "fitness", "bonus", 10.0, float)
+    except ValueError as e:
+        figlib.die(str(e))
 
 
 def load(arg):

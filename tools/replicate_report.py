@@ -17,6 +17,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import csvschema  # noqa: E402
+import runconfig  # noqa: E402
 
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 FITNESS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success", "best",
@@ -76,14 +77,9 @@ def run_seed(path):
 def success_genotypes(run_dir):
     """ga.success_genotypes of the run's config.ini (5 when absent)"""
     try:
-        with open(os.path.join(run_dir, "config.ini")) as f:
-            for line in f:
-                m = re.match(r"\s*success_genotypes\s*=\s*(\d+)", line)
-                if m:
-                    return int(m.group(1))
-    except OSError:
-        pass
-    return 5
+        return runconfig.value(run_dir, "ga", "success_genotypes", 5, int)
+    except ValueError as e:
+        die(str(e))
 
 
 def prim_run(path):

@@ -14,6 +14,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
+import runconfig  # noqa: E402
 
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success", "best",
@@ -23,18 +24,10 @@ COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success"
 def success_genotypes(run_dir):
     """ga.success_genotypes of the run's config.ini (a stage is complete when that many genotypes
     solve all trials); 5, the thesis's, when the directory has no config.ini"""
-    section = None
     try:
-        with open(run_dir + "/config.ini") as f:
-            for line in f:
-                line = line.split("#")[0].strip()
-                if line.startswith("["):
-                    section = line.strip("[]")
-                elif section == "ga" and line.replace(" ", "").startswith("success_genotypes="):
-                    return int(line.split("=", 1)[1])
-    except OSError:
-        pass
-    return 5
+        return runconfig.value(run_dir, "ga", "success_genotypes", 5, int)
+    except ValueError as e:
+        sys.exit(f"runs_summary: {e}")
 
 
 def summarise(run_dir):

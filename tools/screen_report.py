@@ -16,6 +16,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
+import runconfig  # noqa: E402
 
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 SUMMARY = csvschema.pick(csvschema.SUMMARY, "successes")
@@ -71,14 +72,9 @@ def replace_generations(d):
     """postures.vary_replace_generations of the run's config.ini (0 without one): before it
     the varied columns are 0 because the drawn starts replace open's and grasp's"""
     try:
-        with open(os.path.join(d, "config.ini")) as f:
-            for line in f:
-                m = re.match(r"\s*vary_replace_generations\s*=\s*(\d+)", line)
-                if m:
-                    return int(m.group(1))
-    except OSError:
-        pass
-    return 0
+        return runconfig.value(d, "postures", "vary_replace_generations", 0, int)
+    except ValueError as e:
+        die(str(e))
 
 
 def row(d):

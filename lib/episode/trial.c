@@ -375,7 +375,7 @@ int st_stage_varied(const stConfig *cfg, stStage stage) {
 int st_stage_trials(const stProtocol *p, stStage stage) {
   ST_ASSERT(p);
   ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
-  return st_stage_varied(&p->cfg, stage)                            ? ST_MAIN_TRIALS_MAX
+  return st_stage_varied(&p->cfg, stage)                   ? ST_MAIN_TRIALS_MAX
          : stage == ST_STAGE_MAIN && p->cfg.stage_handover ? ST_VARIED_FIRST
                                                            : ST_PRIM_TRIALS;
 }
