@@ -52,6 +52,8 @@ KEYS_handover_elite_chain_gated := $(KEYS_handover_chain_gated) --set stage.hand
 # configuration no fixed start has (docs/PROTOCOL.md, "Screening chaining candidates")
 KEYS_handover_chain_gated_vary := $(KEYS_handover_chain_gated) --set postures.vary_starts=true
 KEYS_handover_chain_gated_vary_extra := $(KEYS_handover_chain_gated_vary) --set postures.vary_trials=extra
+# replace for 30 generations, then extra (configs/chain_prim.cfg first had 30, now 60: 30 were
+# too few from prims_s1 and prims_s4, chain_candidates/sched30_s*)
 KEYS_handover_chain_gated_vary_sched := $(KEYS_handover_chain_gated_vary_extra) \
   --set postures.vary_replace_generations=30
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
