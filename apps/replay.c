@@ -469,15 +469,24 @@ int main(int argc, char **argv) {
     else if (!strcmp(stage_name, "main")) stage = ST_STAGE_MAIN;
     else app_die(prog, "--stage '%s': expected simple or main", stage_name);
   }
-  /* main-prim: 16..27 its hand-over trials (stage.handover), 28..35 its varied trials
-   * (postures.vary_trials = extra) */
+  /* main-prim: its hand-over trials (stage.handover) and varied trials (postures.vary_trials =
+   * extra) after the 16 (st_trial_kind) */
   const int handover = stage == ST_STAGE_MAIN && cfg.stage_handover;
   const int varied = st_stage_varied(&cfg, stage);
+  const int kind = trial >= 0 && trial < ST_MAIN_TRIALS_MAX ? (int)st_trial_kind(trial) : -1;
   if (post < 0 && !integrated &&
-      !(trial < ST_PRIM_TRIALS || (trial < ST_VARIED_FIRST && handover) ||
-        (trial >= ST_VARIED_FIRST && trial < ST_MAIN_TRIALS_MAX && varied)))
-    app_die(prog, "--trial %d: expected 0..%d%s%s", trial, ST_PRIM_TRIALS - 1,
-            handover ? ", 16..27 (hand-over trials)" : "", varied ? ", 28..35 (varied trials)" : "");
+      !(kind == ST_TRIAL_FIXED || (kind == ST_TRIAL_HANDOVER && handover) ||
+        (kind == ST_TRIAL_VARIED && varied))) {
+    char more[128] = "";
+    int m = 0;
+    if (handover)
+      m += snprintf(more, sizeof more, ", %d..%d (hand-over trials)", ST_PRIM_TRIALS,
+                    ST_VARIED_FIRST - 1);
+    if (varied)
+      snprintf(more + m, sizeof more - (size_t)m, ", %d..%d (varied trials)", ST_VARIED_FIRST,
+               ST_MAIN_TRIALS_MAX - 1);
+    app_die(prog, "--trial %d: expected 0..%d%s", trial, ST_PRIM_TRIALS - 1, more);
+  }
   /* network.arch: an integrated-stage genotype (type A or B) replays primitive trials too */
   const stNetArch arch = (stNetArch)cfg.network_arch;
   char err[1024];
@@ -488,7 +497,7 @@ int main(int argc, char **argv) {
   if (index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
   if (index < 0) index = pick_index(&set, genome, generation);
   if (generation < 0) generation = set.generation[index] >= 0 ? set.generation[index] : 0;
-  if (post < 0 && !integrated && trial >= ST_VARIED_FIRST && st_vary_replacing(&cfg, generation))
+  if (post < 0 && !integrated && kind == ST_TRIAL_VARIED && st_vary_replacing(&cfg, generation))
     app_die(prog, "--trial %d: generation %d runs no varied trials (its open and grasp trials start "
             "from the drawn postures instead: postures.vary_replace_generations = %d); expected "
             "--generation %d or later", trial, generation, cfg.postures_vary_replace_generations,
@@ -499,7 +508,7 @@ int main(int argc, char **argv) {
   if (st_protocol_create(&cfg, &p, err, sizeof err)) app_die(prog, "%s", err);
   /* stage.handover_rollin = elite: a hand-over trial's roll-in is the elite's */
   const int elite_rollin = post < 0 && !integrated && st_stage_rollin_elite(p, stage) &&
-                           trial >= ST_PRIM_TRIALS && trial < ST_VARIED_FIRST;
+                           kind == ST_TRIAL_HANDOVER;
   if (elite_rollin && !rollin_file)
     app_die(prog, "%s rolls hand-over trials in with the generation's elite (stage.handover_rollin "
             "= elite): give it with --rollin FILE (e.g. the run's best.genome: generation G - 1's "
@@ -507,7 +516,8 @@ int main(int argc, char **argv) {
             "genotype 0)", ca.config_path);
   if (!elite_rollin && (rollin_file || rollin_index >= 0 || rollin_last))
     app_die(prog, "--rollin names who rolls a hand-over trial in under stage.handover_rollin = "
-            "elite: give a main-prim hand-over trial (16..27) of such a config");
+            "elite: give a main-prim hand-over trial (%d..%d) of such a config", ST_PRIM_TRIALS,
+            ST_VARIED_FIRST - 1);
   stNetParams np;
   if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);

@@ -171,6 +171,20 @@ else
   ko "postures.vary_replace_generations" "$(tail -2 "$tmp/vs.log") $(cat "$tmp/vs0.err")"
 fi
 
+# a first stage completing at the run's generation limit leaves the next one unrun: the run
+# stops at the limit, not with "all stages complete" (4 of the first 10 genotypes of
+# data/evolved/simple_prim_s3.genome solve simple-prim's 16 at seed 3's generation 0)
+"$EV" configs/prims.cfg --seed 3 --generations 1 --threads 1 --out "$tmp/sl" \
+  --set stage.init_population=data/evolved/simple_prim_s3.genome --set ga.population=10 \
+  --set ga.elites=1 --set ga.parents=2 --set ga.success_genotypes=2 > "$tmp/sl.log" 2>&1
+if grep -q "^evolve: simple-prim complete at generation 0" "$tmp/sl.log" &&
+   grep -q "^evolve: stopped after generation 0 (generation limit)" "$tmp/sl.log" &&
+   ! grep -q "all stages complete" "$tmp/sl.log"; then
+  ok "simple-prim complete at the generation limit: stopped at the limit, main-prim not run"
+else
+  ko "a stage complete at the limit" "$(tail -2 "$tmp/sl.log")"
+fi
+
 # stage.handover and stage.chain_trials (SPEC 12): main-prim's hand-over trials (open's, here)
 # and chained trials; thread-independent; the hand-over trials replayed one by one (the fixed
 # and hand-over trials' shares of F_open, summed, are the best's fitness, the successes those of

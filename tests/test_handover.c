@@ -496,6 +496,16 @@ static void test_evaluation_completes(void) {
   CU_ASSERT(st_evaluation_completes(&fc, &e));
   e.fixed_drawn = 8;
   CU_ASSERT(!st_evaluation_completes(&fc, &e));
+  /* and under chain_complete = all, every trial solved (the 16 from drawn starts): with extra
+   * the drawn starts are its first phase, so still not complete; under replace they are the
+   * protocol, so complete */
+  e.handover_successes = 12, e.successes = 36;
+  all.postures_vary_starts = 1, all.postures_vary_trials = ST_VARY_EXTRA;
+  all.postures_vary_replace_generations = 30;
+  CU_ASSERT(!st_evaluation_completes(&all, &e));
+  all.postures_vary_trials = ST_VARY_REPLACE, all.postures_vary_replace_generations = 0;
+  CU_ASSERT(st_evaluation_completes(&all, &e));
+  st_config_default(&all);
   /* simple-prim: 16 trials, no chained ones */
   memset(&e, 0, sizeof e);
   e.ntrials = 16, e.successes = 15;

@@ -681,6 +681,39 @@ static void test_trial_vary_schedule(void) {
   st_protocol_destroy(sched);
 }
 
+/* A hand-over trial's fallback starts from its primitive's fixed posture, also in a generation
+ * whose open and grasp trials start from drawn ones (stage.handover_fallback with replace):
+ * the fixed trial itself is drawn there, its fallback is not */
+static void test_fallback_fixed_posture(void) {
+  stConfig c;
+  st_config_default(&c);
+  c.run_seed = 5;
+  c.stage_stages = ST_STAGES_MAIN;
+  c.stage_handover = 1;
+  c.stage_handover_fallback = 1;
+  c.postures_vary_starts = 1;
+  stProtocol *p = NULL;
+  char err[512] = "";
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &p, err, sizeof err), ST_OK);
+  int drawn = 0;
+  for (int j = 0; j < 8; j++) { /* open's and grasp's hand-over trials */
+    stTrialSpec h, fixed, fb;
+    st_trial_spec(p, ST_STAGE_MAIN, 3, ST_PRIM_TRIALS + j, &h);
+    st_trial_spec(p, ST_STAGE_MAIN, 3, h.primitive * ST_NPOSTURE + h.k, &fixed);
+    st_handover_fallback(p, &h, &fb);
+    drawn += fixed.start_draws > 0;
+    CU_ASSERT_EQUAL(fb.start_draws, 0);
+    CU_ASSERT(memcmp(fb.qhat0, p->posture[h.primitive][h.k], sizeof fb.qhat0) == 0);
+    /* everything else is the fixed trial's, the target the hand-over trial's */
+    CU_ASSERT(memcmp(fb.obj, fixed.obj, sizeof fb.obj) == 0);
+    CU_ASSERT(memcmp(fb.target, h.target, sizeof fb.target) == 0);
+    CU_ASSERT(fb.steps == fixed.steps && fb.table_off_step == fixed.table_off_step);
+    CU_ASSERT_EQUAL(fb.index, ST_PRIM_TRIALS + j);
+  }
+  CU_ASSERT_EQUAL(drawn, 8);
+  st_protocol_destroy(p);
+}
+
 static void test_postures_move(void) {
   fixture f;
   CU_ASSERT_FATAL(fixture_open(&f));
@@ -781,6 +814,7 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_trial_varied_starts);
   ST_ADD_TEST(test_trial_varied_extra);
   ST_ADD_TEST(test_trial_vary_schedule);
+  ST_ADD_TEST(test_fallback_fixed_posture);
   ST_ADD_TEST(test_postures_move);
   ST_ADD_TEST(test_posture_check_rejects);
   ST_ADD_TEST(test_posture_errors);

@@ -146,8 +146,11 @@ static void evaluate(const options *o, const stConfig *cfg, const stProtocol *p,
   snprintf(what, sizeof what, "%d individuals of %s, %s stage, generation %d", n, path,
            integrated ? ST_INTEGRATED_STAGE_NAME : st_stage_name(stage), o->generation);
   summary(cpu, n, what, "individual");
-  printf("# plan: population=%d generations=%d\n", cfg->ga_population,
-         integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations);
+  /* replace_generations: the chain stage's first phase (postures.vary_replace_generations),
+   * cheaper than the rest (no varied trials), priced apart */
+  printf("# plan: population=%d generations=%d replace_generations=%d\n", cfg->ga_population,
+         integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations,
+         integrated ? 0 : cfg->postures_vary_replace_generations);
   free(cpu);
   st_workspace_free(&ws);
 }

@@ -227,19 +227,31 @@ def plan_steps(a, meter):
     if a.protocol == "chain":
         chain_gens, chain_sets = step_args("CHAIN_ARGS", a.chain_args)
         primitives = need_file(a.chain_pop, "COST_CHAIN_POP")
-        # priced at the run's last generation: past postures.vary_replace_generations, where
-        # the varied trials run too (the dearer phase)
+        # two phases: generations below postures.vary_replace_generations (the drawn starts in
+        # place of open's and grasp's) priced at generation 0, the rest (the varied trials
+        # too, the dearer phase) at the run's last generation
         chain_args = ["configs/chain_prim.cfg", "--population", primitives, "--spread"]
-        last = (chain_gens or meter.run(chain_args + chain_sets, 0)[1]["generations"]) - 1
-        chain = meter.cost("chain", chain_args + ["--generation", str(last)] + chain_sets, n)
-        costs.append(("chain-stage individual", chain, primitives))
-        steps.append(evolution("chain", a.runs, chain, chain_gens))
-        notes.append("chain: priced at its last generation's trials; expected and at most its "
-                     "cap, %d generations (%s): a chain run "
+        plan = meter.run(chain_args + chain_sets, 0)[1]
+        cap = chain_gens or plan["generations"]
+        replace = min(plan.get("replace_generations", 0), cap)
+        if replace:
+            early = meter.cost("chain-replace", chain_args + ["--generation", "0"] + chain_sets, n)
+            costs.append(("chain replace individual", early, primitives))
+            steps.append(evolution("chain: replace", a.runs, early, replace))
+        if cap > replace:
+            chain = meter.cost("chain", chain_args + ["--generation", str(cap - 1)] + chain_sets, n)
+            costs.append(("chain extra individual" if replace else "chain-stage individual",
+                          chain, primitives))
+            steps.append(evolution("chain: extra" if replace else "chain", a.runs, chain,
+                                   cap - replace))
+        notes.append("chain: %sexpected and at most its cap, %d generations (%s): a chain run "
                      "ends earlier when ga.success_genotypes genotypes of one generation solve "
                      "the 16 fixed and all chained trials (stage.chain_complete), not yet "
-                     "measured often enough to price." % (steps[-1].gens, "CHAIN_ARGS' --generations"
-                                                          if chain_gens else "ga.max_generations"))
+                     "measured often enough to price." % (
+                         "the first %d (postures.vary_replace_generations) priced at generation "
+                         "0's trials, the rest at the last generation's; " % replace
+                         if replace and cap > replace else "", cap,
+                         "CHAIN_ARGS' --generations" if chain_gens else "ga.max_generations"))
 
     _, integ_sets = step_args("INTEG_ARGS", a.integ_args)
     integ = meter.cost("integration", ["configs/prims.cfg", "--population", primitives,

@@ -108,7 +108,7 @@ extern "C" {
   BOOL(stage, handover, 0, "main-prim adds 12 hand-over trials: open, grasp, move from where the caretaker hands over to each in the individual's own chain (SPEC 12, docs/PROTOCOL.md; not the thesis's); false: its 16") \
   INT(stage, chain_trials, 0, 0, 32, "main-prim adds this many chained trials (the integrated stage's table, the caretaker's words) scored by eq. 2.14 into F_chain (SPEC 12; 0: the thesis)") \
   ENUM(stage, chain_combine, 0, "harmonic|sum", "how F_chain joins main-prim's F: harmonic, a 5th term of the harmonic mean; sum, added to the harmonic mean of the four F_p, weighted by chain_gate (docs/PROTOCOL.md)") \
-  REAL(stage, chain_gate, 0.0, 0.0, 64.0, "chain_combine = sum: F_chain is weighted by (fixed trials solved / 16)^chain_gate, so that selection keeps the thesis's 16 trials solved; 0: unweighted") \
+  REAL(stage, chain_gate, 0.0, 0.0, 64.0, "chain_combine = sum: F_chain is weighted by (fixed trials solved / fixed trials evaluated, 16 with every primitive)^chain_gate, so that selection keeps the thesis's 16 trials solved; 0: unweighted") \
   ENUM(stage, chain_complete, 0, "all|fixed_chained", "what a genotype solves to count towards ga.success_genotypes with chained trials: all, every trial; fixed_chained, the fixed and the chained ones") \
   REAL(stage, chain_progress, 0.0, 0.0, 1000.0, "F_chain adds this times the mean of how far the caretaker got in the chained trials (reach 0 .. move 3): a shaping term, not the thesis's (docs/PROTOCOL.md); 0: eq. 2.14 alone") \
   BOOL(stage, handover_fallback, 0, "a hand-over trial whose chain never hands over: true, runs from the fixed posture; false, scores 0 over its length (a fallback it solves would reward a chain that breaks)") \

@@ -10,7 +10,7 @@
  * (contact checks) and frees it before returning: call these at run or trial set-up, not in
  * a control loop (st_postures_all computes the 16 once).
  *
- * How each is built (numbers in lib/task/postures.c, top):
+ * How each is built (the numbers are the postures.* keys, selftalk/config.h; defaults here):
  *   reach  k: the palm centre is placed (position only) at a fixed offset from the centre of
  *             the four object positions, from four different start postures; torso yaw and
  *             pitch at 0 degrees, thumb and fingers fully extended. Palm >= 0.15 m from every
@@ -21,8 +21,8 @@
  *   open   k=2,3: palm down, centred 4 cm above the ball top, hand almost closed (flexion 0.8).
  *   grasp  k: palm down, centred 3 cm above the ball top; fingers extended (k=0,1) or
  *             partly flexed (0.25, k=2,3).
- *   move   k: palm down on the ball top (1 mm contact), ball centre 2 cm ahead of the palm
- *             centre, thumb half opposed; the thumb, then the fingers, close until they touch
+ *   move   k: palm down on the ball top (1 mm contact), ball centre 3.5 cm ahead of the palm
+ *             centre, thumb opposed 0.8; the thumb, then the fingers, close until they touch
  *             the ball (the thumb; 3 fingertips), on a 0.01 grid, then squeeze by 0.02 more.
  *             In kinematic mode the check asks for >= 3 touch sensors on the object and
  *             d_g < 0.03 m; the SPEC §8 property that the object stays 3 s in the hand with

@@ -27,12 +27,17 @@ extern "C" {
 #define ST_VARIED_FIRST (ST_PRIM_TRIALS + ST_HANDOVER_TRIALS)
 #define ST_MAIN_TRIALS_MAX (ST_VARIED_FIRST + ST_VARIED_TRIALS)
 
+/* What a trial index of a primitive stage is: one of the thesis's 16, a hand-over trial or a
+ * varied trial (the ranges above, in one place) */
+typedef enum stTrialKind { ST_TRIAL_FIXED = 0, ST_TRIAL_HANDOVER, ST_TRIAL_VARIED } stTrialKind;
+stTrialKind st_trial_kind(int index);
+
 /* One trial, fully specified. */
 typedef struct stTrialSpec {
   stStage stage;
-  int index;          /* 0..15: primitive index / 4, posture and object position index % 4;
-                         16..27: hand-over trials (primitive 1 + (index - 16) / 4);
-                         28..35: varied trials (primitive 1 + (index - 28) / 4) */
+  int index;          /* fixed trials (st_trial_kind): primitive index / 4, posture and
+                         object position index % 4; hand-over and varied trials: open, grasp
+                         (and move) by fours from ST_PRIM_TRIALS and ST_VARIED_FIRST */
   int generation;
   int primitive;
   int k;              /* posture and object position */
@@ -76,7 +81,8 @@ typedef struct stTrialTable {
 void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table);
 
 /* The trial a hand-over trial falls back to when its roll-in did not hand over: the fixed
- * main-prim trial of its primitive and posture, with the hand-over trial's target and index. */
+ * main-prim trial of its primitive and posture, from the fixed posture (never a drawn start,
+ * even in generations that replace), with the hand-over trial's target and index. */
 void st_handover_fallback(const stProtocol *p, const stTrialSpec *handover, stTrialSpec *t);
 
 /* The key of the dynamic solver's generator for trial `index` of a generation run by
@@ -212,7 +218,7 @@ typedef struct stEvaluation {
                                   f_chain with stage.chain_trials) */
   double fp[ST_NPRIM];         /* F_p (0 for a primitive not evaluated) */
   int ntrials;                 /* trials evaluated: 16 unless stage.primitives names fewer;
-                                  with stage.handover main-prim's hand-over trials too */
+                                  main-prim's hand-over, varied and chained trials too */
   int successes;               /* trials succeeded (hand-over trials included) */
   uint8_t success[ST_PRIM_TRIALS]; /* the fixed trials */
   int fixed_drawn;             /* ... of them started from a drawn posture (st_vary_replacing) */

@@ -504,6 +504,41 @@ static int check_switched(const stConfig *c, int on, const char *section, const 
   return -1;
 }
 
+/* the primitive stages' extra trials, refused where nothing they shape would run; returns
+ * the key index blamed and a message, or -1 */
+static int check_acts(const stConfig *c, char *msg, size_t n) {
+  const unsigned prims = st_config_primitive_mask(c);
+  const unsigned open_grasp = 1u << ST_PRIM_OPEN | 1u << ST_PRIM_GRASP;
+  if (c->stage_handover && !(prims & (open_grasp | 1u << ST_PRIM_MOVE))) {
+    snprintf(msg, n, "the hand-over trials are open's, grasp's and move's, and stage.primitives "
+             "= %s evaluates none of them (expected one of them in stage.primitives, or "
+             "stage.handover = false)", c->stage_primitives);
+    return st_config_find("stage", "handover");
+  }
+  if (c->postures_vary_starts && !(prims & open_grasp)) {
+    snprintf(msg, n, "the drawn starts are open's and grasp's, and stage.primitives = %s "
+             "evaluates neither (expected open or grasp in stage.primitives, or "
+             "postures.vary_starts = false)", c->stage_primitives);
+    return st_config_find("postures", "vary_starts");
+  }
+  if (c->postures_vary_replace_generations >= c->ga_max_generations) {
+    snprintf(msg, n, "%d generations of replace, and ga.max_generations = %d ends the run before "
+             "the first of extra (expected fewer than ga.max_generations)",
+             c->postures_vary_replace_generations, c->ga_max_generations);
+    return st_config_find("postures", "vary_replace_generations");
+  }
+  /* fixed_chained counts only genotypes solving the 16 from their fixed starts */
+  if (c->postures_vary_starts && c->postures_vary_trials == ST_VARY_REPLACE &&
+      c->stage_chain_trials > 0 && c->stage_chain_complete == ST_CHAIN_COMPLETE_FIXED_CHAINED) {
+    snprintf(msg, n, "fixed_chained completes a genotype only when it solves the 16 from their "
+             "fixed starts, and postures.vary_trials = replace draws open's and grasp's in every "
+             "generation, so the stage could never complete (expected postures.vary_trials = "
+             "extra, or stage.chain_complete = all)");
+    return st_config_find("stage", "chain_complete");
+  }
+  return -1;
+}
+
 /* cross-key rules; returns the key index blamed and a message, or -1 */
 static int check_rules(const stConfig *c, char *msg, size_t n) {
   int k = check_integrated(c, msg, n);
@@ -545,6 +580,7 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
              "reach,open,grasp,move)", c->stage_primitives);
     return st_config_find("stage", "primitives");
   }
+  if ((k = check_acts(c, msg, n)) >= 0) return k;
   if (c->ga_elites > c->ga_population) {
     snprintf(msg, n, "%d exceeds ga.population = %d (expected elites <= population)", c->ga_elites,
              c->ga_population);

@@ -9,6 +9,17 @@
 #include "selftalk/integrated.h"
 #include "selftalk/postures.h"
 
+/* the index ranges are whole postures: index % ST_NPOSTURE is a trial's posture in each */
+typedef char st__trial_ranges_aligned[(ST_PRIM_TRIALS % ST_NPOSTURE == 0 &&
+                                       ST_VARIED_FIRST % ST_NPOSTURE == 0) ? 1 : -1];
+
+stTrialKind st_trial_kind(int index) {
+  ST_ASSERT(index >= 0 && index < ST_MAIN_TRIALS_MAX);
+  return index < ST_PRIM_TRIALS ? ST_TRIAL_FIXED
+         : index < ST_VARIED_FIRST ? ST_TRIAL_HANDOVER
+                                   : ST_TRIAL_VARIED;
+}
+
 /* postures.vary_starts: an open or grasp trial starts from the first drawn variation of its
  * posture that has the SPEC 8 properties; the draws are keyed by (generation, trial), common to
  * every individual, on a stream of their own so the other draws are unchanged */
@@ -47,7 +58,7 @@ static int main_table_off(const stConfig *c, int primitive) {
  * object resting on it, not one already held as its fixed trials do */
 static void handover_spec(const stProtocol *p, int j, stTrialSpec *t) {
   const stConfig *c = &p->cfg;
-  t->primitive = ST_PRIM_OPEN + j / ST_NPOSTURE;
+  t->primitive = st_trial_primitive(ST_PRIM_TRIALS + j);
   t->k = j % ST_NPOSTURE;
   t->target_index = t->k % 2;
   t->handover = 1;
@@ -61,7 +72,9 @@ static void handover_spec(const stProtocol *p, int j, stTrialSpec *t) {
   t->table_off_step = t->primitive == ST_PRIM_MOVE ? -1 : main_table_off(c, t->primitive);
 }
 
-void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
+/* st_trial_spec; draw 0: the fixed posture whatever postures.vary_* say */
+static void trial_spec(const stProtocol *p, stStage stage, int generation, int index, int draw,
+                       stTrialSpec *t) {
   ST_ASSERT(p && t);
   ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
   ST_ASSERT(generation >= 0);
@@ -71,11 +84,12 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
   t->stage = stage;
   t->index = index;
   t->generation = generation;
-  if (stage == ST_STAGE_MAIN && index >= ST_PRIM_TRIALS && index < ST_VARIED_FIRST) {
+  const stTrialKind kind = st_trial_kind(index);
+  if (kind == ST_TRIAL_HANDOVER) {
     handover_spec(p, index - ST_PRIM_TRIALS, t);
     return;
   }
-  const int varied = index >= ST_VARIED_FIRST;
+  const int varied = kind == ST_TRIAL_VARIED;
   t->primitive = st_trial_primitive(index);
   t->k = index % ST_NPOSTURE;
   t->target_index = t->k % 2;
@@ -84,8 +98,8 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
   stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_TRIAL, (uint64_t)generation, 0, (uint64_t)index);
   st_scene_object(&p->scene, t->k, t->primitive == ST_PRIM_REACH, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
-  if (varied || (st_vary_replacing(c, generation) &&
-                 (t->primitive == ST_PRIM_OPEN || t->primitive == ST_PRIM_GRASP)))
+  if (draw && (varied || (st_vary_replacing(c, generation) &&
+                         (t->primitive == ST_PRIM_OPEN || t->primitive == ST_PRIM_GRASP))))
     vary_start(p, generation, t);
   if (stage == ST_STAGE_SIMPLE) {
     t->steps = c->stage_simple_steps;
@@ -96,10 +110,15 @@ void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index
   }
 }
 
+void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
+  trial_spec(p, stage, generation, index, 1, t);
+}
+
 void st_handover_fallback(const stProtocol *p, const stTrialSpec *h, stTrialSpec *t) {
   ST_ASSERT(p && h && t);
   ST_ASSERT(h->handover);
-  st_trial_spec(p, ST_STAGE_MAIN, h->generation, h->primitive * ST_NPOSTURE + h->k, t);
+  /* the fixed posture, also in generations whose open and grasp starts are drawn */
+  trial_spec(p, ST_STAGE_MAIN, h->generation, h->primitive * ST_NPOSTURE + h->k, 0, t);
   memcpy(t->target, h->target, sizeof t->target);
   t->index = h->index;
 }
@@ -350,7 +369,7 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
   ST_ASSERT(index >= 0 && index < ST_MAIN_TRIALS_MAX);
   const uint64_t seed = (uint64_t)p->cfg.run_seed;
   /* elite roll-ins: one key for every individual, or ODE's shuffling would part their starts */
-  const int handover = index >= ST_PRIM_TRIALS && index < ST_VARIED_FIRST;
+  const int handover = st_trial_kind(index) == ST_TRIAL_HANDOVER;
   if (handover && p->cfg.stage_handover_rollin == ST_ROLLIN_ELITE) individual = 0;
   if (handover)
     return st_rng_keyed(seed, ST_RNG_HANDOVER_SOLVER, (uint64_t)generation, (uint64_t)individual,
@@ -368,6 +387,7 @@ int st_vary_replacing(const stConfig *cfg, int generation) {
 
 int st_stage_varied(const stConfig *cfg, stStage stage) {
   ST_ASSERT(cfg);
+  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
   return stage == ST_STAGE_MAIN && cfg->postures_vary_starts &&
          cfg->postures_vary_trials == ST_VARY_EXTRA;
 }
@@ -382,10 +402,11 @@ int st_stage_trials(const stProtocol *p, stStage stage) {
 
 /* fixed trials i / 4; hand-over and varied trials open, grasp (and move) by fours */
 int st_trial_primitive(int i) {
-  ST_ASSERT(i >= 0 && i < ST_MAIN_TRIALS_MAX);
-  return i < ST_PRIM_TRIALS    ? i / ST_NPOSTURE
-         : i < ST_VARIED_FIRST ? ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE
-                               : ST_PRIM_OPEN + (i - ST_VARIED_FIRST) / ST_NPOSTURE;
+  switch (st_trial_kind(i)) {
+    case ST_TRIAL_FIXED: return i / ST_NPOSTURE;
+    case ST_TRIAL_HANDOVER: return ST_PRIM_OPEN + (i - ST_PRIM_TRIALS) / ST_NPOSTURE;
+    default: return ST_PRIM_OPEN + (i - ST_VARIED_FIRST) / ST_NPOSTURE;
+  }
 }
 
 int st_stage_trial_active(const stProtocol *p, stStage stage, int generation, int i) {
@@ -393,9 +414,11 @@ int st_stage_trial_active(const stProtocol *p, stStage stage, int generation, in
   ST_ASSERT(generation >= 0);
   ST_ASSERT(i >= 0 && i < st_stage_trials(p, stage));
   if (!(p->primitives >> st_trial_primitive(i) & 1u)) return 0;
-  if (i < ST_PRIM_TRIALS) return 1;
-  if (i < ST_VARIED_FIRST) return p->cfg.stage_handover;
-  return st_stage_varied(&p->cfg, stage) && !st_vary_replacing(&p->cfg, generation);
+  switch (st_trial_kind(i)) {
+    case ST_TRIAL_FIXED: return 1;
+    case ST_TRIAL_HANDOVER: return p->cfg.stage_handover;
+    default: return st_stage_varied(&p->cfg, stage) && !st_vary_replacing(&p->cfg, generation);
+  }
 }
 
 void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table) {
@@ -478,6 +501,8 @@ static double chain_weight(const stProtocol *p, const stEvaluation *e, int fixed
 int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e) {
   ST_ASSERT(cfg && e);
   ST_ASSERT(e->successes >= 0 && e->successes <= e->ntrials);
+  /* postures.vary_replace_generations: the 16 are not the thesis's until extra */
+  if (cfg->postures_vary_trials == ST_VARY_EXTRA && e->fixed_drawn > 0) return 0;
   if (cfg->stage_chain_complete == ST_CHAIN_COMPLETE_ALL || e->chain_trials == 0)
     return e->successes == e->ntrials;
   int fixed = 0;
@@ -527,18 +552,22 @@ stStatus st_stage_evaluate_rollin(const stProtocol *p, stWorkspace *ws, stStage 
     e->ntrials++;
     e->successes += r.success;
     e->unstable += r.unstable;
-    if (i < ST_PRIM_TRIALS) {
-      e->success[i] = (uint8_t)r.success;
-      e->fixed_drawn += tab->t[i].start_draws > 0;
-    } else if (i >= ST_VARIED_FIRST) {
-      e->varied_trials++;
-      e->varied_successes += r.success;
-      e->varied_success[i - ST_VARIED_FIRST] = (uint8_t)r.success;
-    } else {
-      e->handover_trials++;
-      e->handover_successes += r.success;
-      e->handovers += r.handover_step >= 0;
-      e->handover_success[i - ST_PRIM_TRIALS] = (uint8_t)r.success;
+    switch (st_trial_kind(i)) {
+      case ST_TRIAL_FIXED:
+        e->success[i] = (uint8_t)r.success;
+        e->fixed_drawn += tab->t[i].start_draws > 0;
+        break;
+      case ST_TRIAL_VARIED:
+        e->varied_trials++;
+        e->varied_successes += r.success;
+        e->varied_success[i - ST_VARIED_FIRST] = (uint8_t)r.success;
+        break;
+      case ST_TRIAL_HANDOVER:
+        e->handover_trials++;
+        e->handover_successes += r.success;
+        e->handovers += r.handover_step >= 0;
+        e->handover_success[i - ST_PRIM_TRIALS] = (uint8_t)r.success;
+        break;
     }
   }
   double fp[ST_NPRIM + 1];

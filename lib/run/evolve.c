@@ -43,7 +43,7 @@ typedef struct run {
   stEvolveTask *tasks;    /* per individual: what to evaluate, */
   stEvolveResult *results; /* and what it gave */
   double *fitness;
-  stGenome *sorted;   /* the final population, best first */
+  stGenome *sorted;   /* the final population, best first (before finish: scratch) */
   double *sorted_fit;
   stFitnessCsv fcsv;  /* fitness.csv's columns (plan_run) */
   double t_start;
@@ -70,6 +70,14 @@ static long long file_size(const char *path) {
 }
 
 /* the out dir must exist (created) and take files, before any work */
+/* a small file written whole; -1 with errno on any failure, the stream closed either way */
+static int write_text(const char *path, const char *text) {
+  FILE *f = fopen(path, "w");
+  if (!f) return -1;
+  const int bad = fputs(text, f) < 0;
+  return fclose(f) != 0 || bad ? -1 : 0;
+}
+
 static stStatus prepare_dir(run *R, char *err, size_t errsz) {
   const char *dir = R->def->out_dir;
   char tmp[ST_PATH_MAX];
@@ -93,8 +101,7 @@ static stStatus prepare_dir(run *R, char *err, size_t errsz) {
   static const char *names[6] = {"config.ini", "fitness.csv", "best.genome", "population.genome",
                                  "checkpoint", ".write_probe"};
   for (int i = 0; i < 6; i++) snprintf(R->path[i], ST_PATH_MAX, "%s/%s", dir, names[i]);
-  FILE *f = fopen(R->path[P_PROBE], "w");
-  if (!f || fputs("probe\n", f) < 0 || fclose(f) != 0) {
+  if (write_text(R->path[P_PROBE], "probe\n")) {
     st__errf(err, errsz, "output directory '%s': not writable: %s", dir, strerror(errno));
     return ST_ERR_IO;
   }
@@ -139,8 +146,10 @@ static const char *stage_label(const run *R) {
 
 /* the generation's tasks: the individuals in GA order; with stage.handover_rollin = elite each
  * carries genotype 0 too, the previous generation's best (st_ga_next puts the elites first,
- * best first; generation 0: the initial population's first, best first in a saved population).
- * It is the population's own genotype 0, so a resumed run, whose checkpoint holds the
+ * best first; generation 0: the initial population's first, best first in a saved population;
+ * main-prim's first generation after simple-prim completes: simple-prim's last population
+ * unchanged, in GA order, so its genotype 0 is the best of the generation before). It is the
+ * population's own genotype 0, so a resumed run, whose checkpoint holds the
  * population, rolls in with the same elite */
 static void make_tasks(run *R, int generation) {
   const int rollin = !R->integrated && st_stage_rollin_elite(R->proto, R->stages[R->stage_idx]);
@@ -233,13 +242,11 @@ static stStatus start_files(run *R, char *err, size_t errsz) {
   if ((st = st_atomic_commit(&af, err, errsz))) return st;
   char hdr[4096];
   st_csv_header_text(&R->fcsv.schema, hdr, sizeof hdr);
-  FILE *f = fopen(R->path[P_CSV], "w");
-  if (!f || fputs(hdr, f) < 0 || fclose(f) != 0) {
+  if (write_text(R->path[P_CSV], hdr)) {
     st__errf(err, errsz, "%s: cannot write: %s", R->path[P_CSV], strerror(errno));
     return ST_ERR_IO;
   }
-  f = fopen(R->path[P_BEST], "w");
-  if (!f || fclose(f) != 0) {
+  if (write_text(R->path[P_BEST], "")) {
     st__errf(err, errsz, "%s: cannot write: %s", R->path[P_BEST], strerror(errno));
     return ST_ERR_IO;
   }
@@ -427,7 +434,7 @@ static void progress(const run *R, int gen, const genStats *s) {
 }
 
 /* the final population, best first, with its fitness, and the last checkpoint */
-static stStatus finish(run *R, int gen, int stage_complete, char *err, size_t errsz) {
+static stStatus finish(run *R, int gen, int all_complete, char *err, size_t errsz) {
   const int n = st_ga_def(R->ga)->population;
   for (int r = 0; r < n; r++) {
     R->sorted[r] = *st_ga_genome(R->ga, st_ga_ranked(R->ga, r));
@@ -437,7 +444,7 @@ static stStatus finish(run *R, int gen, int stage_complete, char *err, size_t er
   if (!st) st = write_checkpoint(R, gen + 1, 1, R->sorted, n, err, errsz);
   if (R->def->progress && !st)
     fprintf(R->def->progress, "evolve: stopped after generation %d (%s); files in %s\n", gen,
-            stage_complete ? "all stages complete" : "generation limit", R->def->out_dir);
+            all_complete ? "all stages complete" : "generation limit", R->def->out_dir);
   return st;
 }
 
@@ -451,10 +458,9 @@ static int next_stage(run *R, int gen, int all, stStatus *st, char *err, size_t 
   if (R->stage_idx + 1 >= R->nstages) return 1;
   R->stage_idx++;
   R->stage_gen = 0;
-  stGenome *same = malloc(sizeof *same * (size_t)n);
+  stGenome *same = R->sorted; /* scratch until finish() */
   for (int i = 0; i < n; i++) same[i] = *st_ga_genome(R->ga, i);
   *st = st_ga_restore(R->ga, gen + 1, same, n, err, errsz);
-  free(same);
   return 0;
 }
 
@@ -463,11 +469,9 @@ static stStatus breed(run *R, int stage_complete, char *err, size_t errsz) {
   const int n = st_ga_def(R->ga)->population;
   stStatus st = stage_complete ? ST_OK : st_ga_next(R->ga);
   if (st) return st;
-  stGenome *pop = malloc(sizeof *pop * (size_t)n);
+  stGenome *pop = R->sorted; /* scratch until finish() */
   for (int i = 0; i < n; i++) pop[i] = *st_ga_genome(R->ga, i);
-  st = write_checkpoint(R, st_ga_generation(R->ga), 0, pop, n, err, errsz);
-  free(pop);
-  return st;
+  return write_checkpoint(R, st_ga_generation(R->ga), 0, pop, n, err, errsz);
 }
 
 /* one generation: evaluate, record, then the next stage, the end, or the next generation;
@@ -484,10 +488,12 @@ static stStatus generation(run *R, int *stop, char *err, size_t errsz) {
   progress(R, gen, &s);
   /* the integrated stage always runs its generations (thesis 2.4) */
   const int stage_complete = !R->integrated && s.all >= R->cfg->ga_success_genotypes;
-  *stop = stage_complete && next_stage(R, gen, s.all, &st, err, errsz);
-  if (gen + 1 >= R->limit) *stop = 1;
+  /* all stages complete only when the last one is: a stage completing at the generation limit
+   * leaves the next one unrun */
+  const int last_complete = stage_complete && next_stage(R, gen, s.all, &st, err, errsz);
+  *stop = last_complete || gen + 1 >= R->limit;
   if (st) return st;
-  if (*stop) return finish(R, gen, stage_complete, err, errsz);
+  if (*stop) return finish(R, gen, last_complete, err, errsz);
   return breed(R, stage_complete, err, errsz);
 }
 
@@ -596,7 +602,7 @@ static void release(run *R) {
 }
 
 stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
-  ST_ASSERT(def && def->cfg);
+  ST_ASSERT(def && def->cfg && def->out_dir);
   run R;
   memset(&R, 0, sizeof R);
   R.def = def;

@@ -138,6 +138,7 @@ static int place_palm_over_ball(const stRobot *r, const stScene *s, int k, const
 }
 
 void st_posture_variation_none(const stScene *s, stPostureVariation *v) {
+  ST_ASSERT(s && v);
   memset(v, 0, sizeof *v);
   v->ik_deg[0] = s->posture.ik_torso_pitch;
   v->ik_deg[1] = s->posture.ik_wrist_prosup;
@@ -145,6 +146,7 @@ void st_posture_variation_none(const stScene *s, stPostureVariation *v) {
 }
 
 void st_posture_variation_draw(const stScene *s, stRng *rng, stPostureVariation *v) {
+  ST_ASSERT(s && rng && v);
   const stPostureDef *d = &s->posture;
   /* uniform in the disc: the radius goes as the square root of a uniform draw */
   const double rad = d->vary_offset * sqrt(st_rng_uniform(rng));
@@ -310,6 +312,7 @@ static stStatus build(const stRobot *r, const stScene *s, int prim, int k,
 
 stStatus st_posture(const stRobot *r, const stScene *s, int prim, int k, double qhat[ST_NDOF],
                     char *err, size_t errsz) {
+  ST_ASSERT(r && s && qhat);
   if (prim < 0 || prim >= ST_NPRIM || k < 0 || k >= ST_NPOSTURE) {
     st__errf(err, errsz, "posture: primitive %d, posture %d (expected 0..%d and 0..%d)", prim, k,
              ST_NPRIM - 1, ST_NPOSTURE - 1);
@@ -323,6 +326,7 @@ stStatus st_posture(const stRobot *r, const stScene *s, int prim, int k, double 
 stStatus st_posture_varied(const stRobot *r, const stScene *s, int prim, int k,
                            const stPostureVariation *v, double qhat[ST_NDOF], char *err,
                            size_t errsz) {
+  ST_ASSERT(r && s && v && qhat);
   if (prim != ST_PRIM_OPEN && prim != ST_PRIM_GRASP) {
     st__errf(err, errsz, "posture: a varied start of primitive %d (expected open or grasp)", prim);
     return ST_ERR_ARG;
@@ -502,6 +506,7 @@ static int check_world(const stRobot *r, const stScene *s, const stWorld *w, int
 
 int st_posture_check(const stRobot *r, const stScene *s, int prim, int k,
                      const double qhat[ST_NDOF], char *why, size_t n) {
+  ST_ASSERT(r && s && qhat);
   if (prim < 0 || prim >= ST_NPRIM || k < 0 || k >= ST_NPOSTURE)
     FAIL("primitive %d, posture %d (expected 0..%d and 0..%d)", prim, k, ST_NPRIM - 1,
          ST_NPOSTURE - 1);
