@@ -72,13 +72,10 @@ static void handover_spec(const stProtocol *p, int j, stTrialSpec *t) {
   t->table_off_step = t->primitive == ST_PRIM_MOVE ? -1 : main_table_off(c, t->primitive);
 }
 
-/* st_trial_spec; draw 0: the fixed posture whatever postures.vary_* say */
+/* st_trial_spec (which checks the arguments); draw 0: the fixed posture whatever
+ * postures.vary_* say */
 static void trial_spec(const stProtocol *p, stStage stage, int generation, int index, int draw,
                        stTrialSpec *t) {
-  ST_ASSERT(p && t);
-  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
-  ST_ASSERT(generation >= 0);
-  ST_ASSERT(index >= 0 && index < (stage == ST_STAGE_MAIN ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS));
   const stConfig *c = &p->cfg;
   memset(t, 0, sizeof *t);
   t->stage = stage;
@@ -111,12 +108,18 @@ static void trial_spec(const stProtocol *p, stStage stage, int generation, int i
 }
 
 void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t) {
+  ST_ASSERT(p && t);
+  ST_ASSERT(stage == ST_STAGE_SIMPLE || stage == ST_STAGE_MAIN);
+  ST_ASSERT(generation >= 0);
+  ST_ASSERT(index >= 0 && index < (stage == ST_STAGE_MAIN ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS));
   trial_spec(p, stage, generation, index, 1, t);
 }
 
 void st_handover_fallback(const stProtocol *p, const stTrialSpec *h, stTrialSpec *t) {
   ST_ASSERT(p && h && t);
-  ST_ASSERT(h->handover);
+  ST_ASSERT(h->handover && h->generation >= 0);
+  ST_ASSERT(h->primitive >= ST_PRIM_OPEN && h->primitive < ST_NPRIM);
+  ST_ASSERT(h->k >= 0 && h->k < ST_NPOSTURE);
   /* the fixed posture, also in generations whose open and grasp starts are drawn */
   trial_spec(p, ST_STAGE_MAIN, h->generation, h->primitive * ST_NPOSTURE + h->k, 0, t);
   memcpy(t->target, h->target, sizeof t->target);
