@@ -504,15 +504,17 @@ static double chain_weight(const stProtocol *p, const stEvaluation *e, int fixed
 int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e) {
   ST_ASSERT(cfg && e);
   ST_ASSERT(e->successes >= 0 && e->successes <= e->ntrials);
-  /* postures.vary_replace_generations: the 16 are not the thesis's until extra */
-  if (cfg->postures_vary_trials == ST_VARY_EXTRA && e->fixed_drawn > 0) return 0;
-  if (cfg->stage_chain_complete == ST_CHAIN_COMPLETE_ALL || e->chain_trials == 0)
-    return e->successes == e->ntrials;
+  const int fixed_chained =
+      cfg->stage_chain_complete == ST_CHAIN_COMPLETE_FIXED_CHAINED && e->chain_trials > 0;
+  /* fixed trials from drawn starts count only under replace with every trial counted: with
+   * extra they are its first phase (vary_replace_generations), and fixed_chained asks for the
+   * thesis's 16 from their fixed starts */
+  if (e->fixed_drawn > 0 && (cfg->postures_vary_trials == ST_VARY_EXTRA || fixed_chained))
+    return 0;
+  if (!fixed_chained) return e->successes == e->ntrials;
   int fixed = 0;
   for (int t = 0; t < ST_PRIM_TRIALS; t++) fixed += e->success[t];
-  /* the thesis's fixed trials, from their fixed starts */
-  return e->fixed_drawn == 0 &&
-         fixed == e->ntrials - e->handover_trials - e->varied_trials - e->chain_trials &&
+  return fixed == e->ntrials - e->handover_trials - e->varied_trials - e->chain_trials &&
          e->chain_successes == e->chain_trials;
 }
 
