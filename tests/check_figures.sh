@@ -72,6 +72,16 @@ has fig3_3 "fig_integration: incremental: successes n=6 median=26.5 q1=21.25 q3=
 "$PY" tools/fig_integration.py "$FIG/integration_summary.csv" --bin 20 -o "$tmp/f33.svg" > "$tmp/f33.out" 2>&1 &&
   grep -qxF "fig_integration: incremental: individuals per bin 0-19:1 20-40:5" "$tmp/f33.out" &&
   ok "fig3_3: --bin 20 (two bins, the second closed)" || ko "fig3_3 --bin" "$(cat "$tmp/f33.out")"
+# two protocols side by side: the incremental rows twice, each file labelled (6 each, as above)
+grep -v ',nonincremental,' "$FIG/integration_summary.csv" > "$tmp/inc.csv"
+"$PY" tools/fig_integration.py "$tmp/inc.csv" "$tmp/inc.csv" --label thesis chain -o "$tmp/f33b.svg" > "$tmp/f33b.out" 2>&1 &&
+  grep -qxF "fig_integration: thesis: successes n=6 median=26.5 q1=21.25 q3=29.5 min=10 max=35" "$tmp/f33b.out" &&
+  grep -qxF "fig_integration: chain: successes n=6 median=26.5 q1=21.25 q3=29.5 min=10 max=35" "$tmp/f33b.out" &&
+  grep -qF "chain (n = 6, median 26.5)" "$tmp/f33b.svg" &&
+  ok "fig3_3: two summaries, --label per file" || ko "fig3_3 --label" "$(cat "$tmp/f33b.out")"
+refuses "fig3_3: one individual in two files" "$tmp/inc.csv:4: incremental run 0 individual 0 is also at $tmp/inc.csv:4" fig_integration.py "$tmp/inc.csv" "$tmp/inc.csv"
+refuses "fig3_3: a label short" "--label: 1 names for 2 summaries (expected one per file)" fig_integration.py "$tmp/inc.csv" "$tmp/inc.csv" --label thesis
+refuses "fig3_3: a label for two conditions" "$FIG/integration_summary.csv: conditions incremental, nonincremental (expected one with --label)" fig_integration.py "$FIG/integration_summary.csv" --label x
 sed '5s/,30,40,0,20$/,30,36,0,20/' "$FIG/integration_summary.csv" > "$tmp/g1.csv"
 refuses "fig3_3: another trial count" "$tmp/g1.csv:5: 36 trials (expected 40, as line 4" fig_integration.py "$tmp/g1.csv"
 sed '5s/,30,40,0,20$/,41,40,0,20/' "$FIG/integration_summary.csv" > "$tmp/g2.csv"

@@ -4,12 +4,15 @@
 how many of its caretaker-guided trials, one bar colour per condition (the thesis: the
 incremental runs, simple-prim then main-prim, against the non-incremental ones, main-prim only).
 
-    /usr/bin/python3 tools/fig_integration.py SUMMARY.csv [--bin 5] [-o fig3_3.png]...
+    /usr/bin/python3 tools/fig_integration.py SUMMARY.csv... [--bin 5] [--label NAME...]
+                                              [-o fig3_3.png]...
 
-SUMMARY.csv is the post-evaluation summary (docs/PROTOCOL.md, "Post-evaluation files"): one row
+Each SUMMARY.csv is a post-evaluation summary (docs/PROTOCOL.md, "Post-evaluation files"): one row
 per individual, test,condition,run,individual,successes,trials,excluded,open_jumped; the rows of
 test "integration" are drawn (the others are skipped), their conditions free names (e.g.
-incremental, nonincremental). Every individual of the test has the same number of trials (40);
+incremental, nonincremental). --label names each file's rows instead, one name per file in
+order (each file then holds one condition), so that two protocols' tests, each run with
+posteval's default condition, are drawn side by side: --label thesis chain). Every individual of the test has the same number of trials (40);
 none is excluded. The bars count the individuals whose successes fall in each bin of --bin
 trials (the last bin closed: 35-40 of 40 with the default 5). Prints, per condition, n, median,
 quartiles (definition 7, as ./apps/stats), extremes and the counts per bin, then the same
@@ -117,14 +120,44 @@ def draw(plt, rows, conds, bs, trials):
     return fig
 
 
+def load_all(paths, labels):
+    """the rows of every file, each file's condition replaced by its label if given; an
+    individual in two files is refused"""
+    if labels and len(labels) != len(paths):
+        figlib.die(f"--label: {len(labels)} names for {len(paths)} summaries (expected one per file)")
+    rows, seen = [], {}
+    for i, path in enumerate(paths):
+        part = load(path)
+        conds = figlib.ordered(r["condition"] for r in part)
+        if labels and len(conds) > 1:
+            figlib.die(f"{path}: conditions {', '.join(conds)} (expected one with --label)")
+        for r in part:
+            r["condition"] = labels[i] if labels else r["condition"]
+            r["_path"] = path
+            key = (r["condition"], r["run"], r["individual"])
+            if key in seen:
+                figlib.die(f"{path}:{r['_line']}: {key[0]} run {key[1]} individual {key[2]} is also "
+                           f"at {seen[key]} (expected each individual once; --label names each file)")
+            seen[key] = f"{path}:{r['_line']}"
+            rows.append(r)
+    first = rows[0]
+    for r in rows:
+        if r["trials"] != first["trials"]:
+            figlib.die(f"{r['_path']}:{r['_line']}: {r['trials']} trials (expected {first['trials']}, as "
+                       f"{first['_path']}:{first['_line']}: every individual of the test has the same trials)")
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("summary")
+    ap.add_argument("summary", nargs="+")
     ap.add_argument("--bin", type=int, default=5, help="trials per bar (default 5)")
+    ap.add_argument("--label", nargs="+", default=[], metavar="NAME",
+                    help="one condition name per summary file, in order")
     figlib.add_out_argument(ap, "fig3_3")
     a = ap.parse_args()
     outs = figlib.outputs(a, "fig3_3")
-    rows = load(a.summary)
+    rows = load_all(a.summary, a.label)
     trials = rows[0]["trials"]
     if not 1 <= a.bin <= trials:
         figlib.die(f"--bin {a.bin}: expected 1..{trials} (the test's trials)")
