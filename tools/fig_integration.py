@@ -12,9 +12,10 @@ per individual, test,condition,run,individual,successes,trials,excluded,open_jum
 test "integration" are drawn (the others are skipped), their conditions free names (e.g.
 incremental, nonincremental). --label names each file's rows instead, one name per file in
 order (each file then holds one condition), so that two protocols' tests, each run with
-posteval's default condition, are drawn side by side: --label thesis chain). Every individual of the test has the same number of trials (40);
-none is excluded. The bars count the individuals whose successes fall in each bin of --bin
-trials (the last bin closed: 35-40 of 40 with the default 5). Prints, per condition, n, median,
+posteval's default condition, are drawn side by side (--label thesis chain). Every individual
+of the test has the same number of trials (40) and appears once; none is excluded. The bars
+count the individuals whose successes fall in each bin of --bin trials (the last bin closed:
+35-40 of 40 with the default 5). Prints, per condition, n, median,
 quartiles (definition 7, as ./apps/stats), extremes and the counts per bin, then the same
 statistics of open_jumped over all individuals (the thesis: median 30 of 40, quartiles 20.25
 and 35) and per condition. Default outputs fig3_3.png and fig3_3.svg.
@@ -34,8 +35,8 @@ TEST = "integration"
 COLOURS = ["#4c72b0", "#dd8452", "#55a868", "#c44e52", "#8172b3", "#937860"]
 
 
-def check_row(path, r, first):
-    """one integration row: counts in range, the same trials as the first row, none excluded"""
+def check_row(path, r):
+    """one integration row: counts in range, none excluded"""
     n = f"{path}:{r['_line']}"
     if r["trials"] < 1 or not 0 <= r["successes"] <= r["trials"]:
         figlib.die(f"{n}: successes {r['successes']} of {r['trials']} trials (expected 0 <= "
@@ -44,24 +45,56 @@ def check_row(path, r, first):
         figlib.die(f"{n}: open_jumped {r['open_jumped']} of {r['trials']} trials (expected 0..trials)")
     if r["excluded"] != 0:
         figlib.die(f"{n}: excluded {r['excluded']} (expected 0: the integration test excludes no one)")
-    if r["trials"] != first["trials"]:
-        figlib.die(f"{n}: {r['trials']} trials (expected {first['trials']}, as line {first['_line']}: "
-                   "every individual of the test has the same trials)")
 
 
 def load(path):
-    """the integration rows, checked; duplicates of (condition, run, individual) refused"""
+    """one file's integration rows, each checked on its own"""
     rows = [r for r in figlib.read_csv(path, COLUMNS, "a post-evaluation summary") if r["test"] == TEST]
     if not rows:
         figlib.die(f"{path}: no rows of test '{TEST}' (expected the integration test's summary rows)")
-    seen = {}
     for r in rows:
-        check_row(path, r, rows[0])
+        check_row(path, r)
+        r["_path"] = path
+    return rows
+
+
+def where(r, other):
+    """row other as row r's error message names it: its line in the same file, else file:line"""
+    return f"line {other['_line']}" if other["_file"] == r["_file"] else f"{other['_path']}:{other['_line']}"
+
+
+def load_all(paths, labels):
+    """the rows of every file, each file's condition replaced by its label if given; every
+    individual with the first row's trials, and once only (in one file or across files)"""
+    if labels and len(labels) != len(paths):
+        figlib.die(f"--label: {len(labels)} names for {len(paths)} summaries (expected one per file)")
+    rows, seen = [], {}
+    for i, path in enumerate(paths):
+        part = load(path)
+        for r in part:
+            r["_file"] = i  # the same path given twice is two files
+        if labels:
+            conds = figlib.ordered(r["condition"] for r in part)
+            if len(conds) > 1:
+                figlib.die(f"{path}: conditions {', '.join(conds)} (expected one with --label)")
+            for r in part:
+                r["condition"] = labels[i]
+        rows += part
+    first = rows[0]
+    for r in rows:
+        n = f"{r['_path']}:{r['_line']}"
+        if r["trials"] != first["trials"]:
+            figlib.die(f"{n}: {r['trials']} trials (expected {first['trials']}, as {where(r, first)}: "
+                       "every individual of the test has the same trials)")
         key = (r["condition"], r["run"], r["individual"])
         if key in seen:
-            figlib.die(f"{path}:{r['_line']}: {r['condition']} run {r['run']} individual "
-                       f"{r['individual']} again (expected one row per individual; first at line {seen[key]})")
-        seen[key] = r["_line"]
+            o = seen[key]
+            if o["_file"] == r["_file"]:
+                figlib.die(f"{n}: {key[0]} run {key[1]} individual {key[2]} again (expected one row "
+                           f"per individual; first at {where(r, o)})")
+            figlib.die(f"{n}: {key[0]} run {key[1]} individual {key[2]} is also at {where(r, o)} "
+                       "(expected each individual once; --label names each file)")
+        seen[key] = r
     return rows
 
 
@@ -118,34 +151,6 @@ def draw(plt, rows, conds, bs, trials):
     ax.legend(fontsize=8, frameon=False)
     fig.tight_layout()
     return fig
-
-
-def load_all(paths, labels):
-    """the rows of every file, each file's condition replaced by its label if given; an
-    individual in two files is refused"""
-    if labels and len(labels) != len(paths):
-        figlib.die(f"--label: {len(labels)} names for {len(paths)} summaries (expected one per file)")
-    rows, seen = [], {}
-    for i, path in enumerate(paths):
-        part = load(path)
-        conds = figlib.ordered(r["condition"] for r in part)
-        if labels and len(conds) > 1:
-            figlib.die(f"{path}: conditions {', '.join(conds)} (expected one with --label)")
-        for r in part:
-            r["condition"] = labels[i] if labels else r["condition"]
-            r["_path"] = path
-            key = (r["condition"], r["run"], r["individual"])
-            if key in seen:
-                figlib.die(f"{path}:{r['_line']}: {key[0]} run {key[1]} individual {key[2]} is also "
-                           f"at {seen[key]} (expected each individual once; --label names each file)")
-            seen[key] = f"{path}:{r['_line']}"
-            rows.append(r)
-    first = rows[0]
-    for r in rows:
-        if r["trials"] != first["trials"]:
-            figlib.die(f"{r['_path']}:{r['_line']}: {r['trials']} trials (expected {first['trials']}, as "
-                       f"{first['_path']}:{first['_line']}: every individual of the test has the same trials)")
-    return rows
 
 
 def main():
