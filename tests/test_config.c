@@ -137,6 +137,8 @@ static void test_config_errors(void) {
                ":4: key 'postures.vary_tilt': it shapes the drawn starts, which "
                "postures.vary_starts = false turns off (expected postures.vary_starts = true, or "
                "the key left out)");
+  expect_error("[postures]\nvary_open_high = true\n", ST_ERR_RANGE,
+               ":2: key 'postures.vary_open_high': it shapes the drawn starts");
   {
     char path[256], e[1024];
     st_test_write_tmp(path, sizeof path, ".cfg", "[postures]\nvary_tilt = 10\nvary_starts = true\n");

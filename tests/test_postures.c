@@ -488,6 +488,58 @@ static void test_postures_varied(void) {
   fixture_close(&f);
 }
 
+/* postures.vary_open_high. By hand: open k=0,1's hand (thumb 0.15, fingers 0.35) has h = 1 -
+ * (0.15 + 0.35) / 2 = 0.75 > open_h 0.7 with the palm down; the palm is 1.5 cm above the ball
+ * top, 2 cm behind its centre: d_r = hypot(0.02, 0.095 - 0.035 - 0.015) = 0.0492, so of eq.
+ * 2.6's success condition only d_r < 0.03 is missing (the hand rises 2 cm, open stays as it
+ * is). Built as k=2,3's, the hand is at flexion 0.8 (h = 0.2), the palm 4 cm above the ball top
+ * over its centre (d_r = 0.095 - 0.075 = 0.020): the condition fails on h alone, and the hand
+ * must open where it is */
+static void test_postures_open_high(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  char err[512];
+  for (int k = 0; k < 2; k++) {
+    double q[ST_NDOF], qh[ST_NDOF];
+    state s;
+    posture_state(&f, ST_PRIM_OPEN, k, q, &s);
+    CU_ASSERT_DOUBLE_EQUAL(s.q.h, 0.75, 1e-9);
+    CU_ASSERT(s.q.h > f.cfg.fitness_open_h && s.q.p > 0.9);
+    CU_ASSERT_DOUBLE_EQUAL(s.q.d_r, 0.0492, 0.001);
+    stPostureVariation v;
+    st_posture_variation_none(&f.scene, &v);
+    v.open_high = 1;
+    CU_ASSERT_EQUAL_FATAL(st_posture_varied(f.robot, &f.scene, ST_PRIM_OPEN, k, &v, qh, err, sizeof err), ST_OK);
+    CU_ASSERT(memcmp(q, qh, sizeof q) != 0);
+    CU_ASSERT_DOUBLE_EQUAL(qh[ST_DOF_THUMB_FLEX], 0.8, 1e-12);
+    CU_ASSERT_DOUBLE_EQUAL(qh[ST_DOF_FINGER_FLEX], 0.8, 1e-12);
+    stWorld *w = NULL;
+    CU_ASSERT_EQUAL_FATAL(st_world_create(f.robot, &f.scene, &w, err, sizeof err), ST_OK);
+    st_world_reset(w, qh, f.scene.obj_pos[k], f.scene.target[k % 2]);
+    stQuantities qq;
+    st_quantities(w, &f.sd, &qq);
+    const double *obj = f.scene.obj_pos[k];
+    CU_ASSERT_DOUBLE_EQUAL(qq.h, 0.2, 1e-9);
+    CU_ASSERT_DOUBLE_EQUAL(qq.palm[2] - (obj[2] + f.scene.obj_radius), 0.04, 0.002);
+    CU_ASSERT(hypot(qq.palm[0] - obj[0], qq.palm[1] - obj[1]) <= 0.002);
+    CU_ASSERT_DOUBLE_EQUAL(qq.d_r, 0.020, 0.001);
+    CU_ASSERT(qq.p > 0.99);
+    CU_ASSERT(!w->contacts.arm_table && !w->contacts.robot_object);
+    st_world_destroy(w);
+  }
+  /* k=2,3 are of that kind already: the key changes nothing there */
+  for (int k = 2; k < ST_NPOSTURE; k++) {
+    double q0[ST_NDOF], q1[ST_NDOF];
+    stPostureVariation v;
+    st_posture_variation_none(&f.scene, &v);
+    v.open_high = 1;
+    CU_ASSERT_EQUAL_FATAL(st_posture(f.robot, &f.scene, ST_PRIM_OPEN, k, q0, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_posture_varied(f.robot, &f.scene, ST_PRIM_OPEN, k, &v, q1, err, sizeof err), ST_OK);
+    CU_ASSERT(memcmp(q0, q1, sizeof q0) == 0);
+  }
+  fixture_close(&f);
+}
+
 /* the draws: 4000 from the default ranges stay in them; a uniform disc of radius R has
  * E[r^2] = R^2 / 2 = 2e-4 (sd of the mean of r^2: R^2 / sqrt(12) / sqrt(4000) = 2.3e-6); the
  * tilt's mean is 10 deg, the IK starts' means are the ranges' midpoints (10, 40, -37.5) */
@@ -631,6 +683,40 @@ static void test_trial_varied_extra(void) {
   st_protocol_destroy(fixed);
   st_protocol_destroy(extra);
   st_protocol_destroy(both);
+}
+
+/* postures.vary_open_high with extra: open's varied trials at k=0,1 (28, 29) start with the
+ * hand almost closed (flexion 0.8); every other trial, and the stream of draws, is as without
+ * the key: the 16 fixed, open's varied k=2,3 and grasp's varied bit for bit */
+static void test_trial_varied_open_high(void) {
+  stConfig c;
+  st_config_default(&c);
+  c.run_seed = 5;
+  c.stage_stages = ST_STAGES_MAIN;
+  c.postures_vary_starts = 1, c.postures_vary_trials = ST_VARY_EXTRA;
+  stProtocol *as_k = NULL, *high = NULL;
+  char err[512] = "";
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &as_k, err, sizeof err), ST_OK);
+  c.postures_vary_open_high = 1;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&c, &high, err, sizeof err), ST_OK);
+  for (int gen = 0; gen < 3; gen++)
+    for (int i = 0; i < 36; i++) {
+      if (!st_stage_trial_active(high, ST_STAGE_MAIN, gen, i)) continue;
+      stTrialSpec a, b;
+      st_trial_spec(as_k, ST_STAGE_MAIN, gen, i, &a);
+      st_trial_spec(high, ST_STAGE_MAIN, gen, i, &b);
+      if (i == 28 || i == 29) {
+        CU_ASSERT(b.primitive == ST_PRIM_OPEN && b.k == i - 28 && b.start_draws >= 1);
+        CU_ASSERT_DOUBLE_EQUAL(a.qhat0[ST_DOF_FINGER_FLEX], 0.35, 1e-12);
+        CU_ASSERT_DOUBLE_EQUAL(b.qhat0[ST_DOF_FINGER_FLEX], 0.8, 1e-12);
+        CU_ASSERT_DOUBLE_EQUAL(b.qhat0[ST_DOF_THUMB_FLEX], 0.8, 1e-12);
+        CU_ASSERT(memcmp(a.obj, b.obj, sizeof a.obj) == 0);
+      } else {
+        CU_ASSERT(memcmp(&a, &b, sizeof a) == 0);
+      }
+    }
+  st_protocol_destroy(as_k);
+  st_protocol_destroy(high);
 }
 
 /* postures.vary_replace_generations = 2 with extra: generations 0 and 1 are replace's, bit for
@@ -810,9 +896,11 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_postures_grasp_gap);
   ST_ADD_TEST(test_postures_ik_start);
   ST_ADD_TEST(test_postures_varied);
+  ST_ADD_TEST(test_postures_open_high);
   ST_ADD_TEST(test_postures_variation_draw);
   ST_ADD_TEST(test_trial_varied_starts);
   ST_ADD_TEST(test_trial_varied_extra);
+  ST_ADD_TEST(test_trial_varied_open_high);
   ST_ADD_TEST(test_trial_vary_schedule);
   ST_ADD_TEST(test_fallback_fixed_posture);
   ST_ADD_TEST(test_postures_move);

@@ -163,6 +163,7 @@ extern "C" {
   REAL(postures, vary_torso_pitch, 20.0, -22.0, 70.0, "vary_starts: the IK start's torso pitch is uniform between ik_torso_pitch and this, deg") \
   REAL(postures, vary_wrist_prosup, 0.0, -90.0, 90.0, "vary_starts: the IK start's wrist pronation-supination is uniform between ik_wrist_prosup and this, deg") \
   REAL(postures, vary_wrist_pitch, -45.0, -90.0, 0.0, "vary_starts: the IK start's wrist pitch is uniform between ik_wrist_pitch and this, deg") \
+  BOOL(postures, vary_open_high, 0, "vary_starts: open's drawn starts at k=0,1 are built as k=2,3's (palm a few cm above the ball, hand almost closed): open earns its success everywhere (PROTOCOL.md)") \
   INT(postures, vary_draws, 20, 1, 1000, "vary_starts: draws per trial until one has the SPEC 8 properties; when none has, the trial starts from the fixed posture") \
   ENUM(dynamics, solver, 1, "quickstep|step", "ODE stepper: quickstep (iterative; its constraint shuffling uses a per-thread generator seeded per trial) or step (direct, slower)") \
   REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \

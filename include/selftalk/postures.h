@@ -58,6 +58,7 @@ typedef struct stPostureVariation {
   double dx, dy;
   double tilt, azimuth;
   double ik_deg[3];
+  int open_high; /* open k=0,1 built as k=2,3 (palm a few cm above, hand almost closed) */
 } stPostureVariation;
 
 /* The variation that changes nothing: st_posture_varied then gives st_posture's result. */
@@ -65,7 +66,8 @@ void st_posture_variation_none(const stScene *scene, stPostureVariation *v);
 
 /* Draws a variation from the scene's postures.vary_* ranges: the offset uniform in a disc of
  * radius vary_offset, the tilt angle uniform in [0, vary_tilt] and its direction uniform, each
- * IK start angle uniform between the ik_* key and its vary_* key. */
+ * IK start angle uniform between the ik_* key and its vary_* key; open_high is
+ * postures.vary_open_high (not drawn: the stream is the same either way). */
 void st_posture_variation_draw(const stScene *scene, stRng *rng, stPostureVariation *v);
 
 /* Open or grasp posture k built with variation v, checked as st_posture checks: ST_ERR_RANGE

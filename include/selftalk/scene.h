@@ -40,6 +40,7 @@ typedef struct stPostureDef {
   double ik_torso_pitch, ik_wrist_prosup, ik_wrist_pitch; /* IK start of open, grasp, move, deg */
   double vary_offset, vary_tilt;                          /* postures.vary_*: m, deg */
   double vary_torso_pitch, vary_wrist_prosup, vary_wrist_pitch; /* the IK start's other end, deg */
+  int vary_open_high; /* postures.vary_open_high: drawn open starts are all of k=2,3's kind */
   int reach_max_steps;
   double reach_height; /* fitness.reach_height: the reach point above the object centre */
 } stPostureDef;

@@ -24,6 +24,9 @@
 #define PD (s->posture) /* the postures.* keys of the scene in scope */
 #define REACH_SUCCESS_DIST 0.03 /* fitness.success_dist: the reach-time check's "reached" */
 static double dist3(const double *a, const double *b);
+/* st_posture_check with open's kind given (near: k=0,1's, around the ball) */
+static int check_kind(const stRobot *r, const stScene *s, int prim, int k, int near,
+                      const double qhat[ST_NDOF], char *why, size_t n);
 
 /* reach: start postures (degrees, SPEC §3 order, torso at 0) and the palm-centre target as an
  * offset from the centre of the four object positions; position only, torso fixed at 0 */
@@ -137,6 +140,10 @@ static int place_palm_over_ball(const stRobot *r, const stScene *s, int k, const
   return ik_run(r, &def, &t, q, what, k, err, errsz);
 }
 
+/* open k=0,1's kind (around the ball, almost grasping) unless the variation builds every open
+ * start as k=2,3's (a few cm above, hand almost closed) */
+static int open_near(int k, const stPostureVariation *v) { return k < 2 && !v->open_high; }
+
 void st_posture_variation_none(const stScene *s, stPostureVariation *v) {
   ST_ASSERT(s && v);
   memset(v, 0, sizeof *v);
@@ -158,6 +165,7 @@ void st_posture_variation_draw(const stScene *s, stRng *rng, stPostureVariation 
   v->ik_deg[0] = st_rng_range(rng, d->ik_torso_pitch, d->vary_torso_pitch);
   v->ik_deg[1] = st_rng_range(rng, d->ik_wrist_prosup, d->vary_wrist_prosup);
   v->ik_deg[2] = st_rng_range(rng, d->ik_wrist_pitch, d->vary_wrist_pitch);
+  v->open_high = d->vary_open_high; /* a key, not a draw: the stream stays as it was */
 }
 
 static int count_fingertips(const stWorld *w) {
@@ -222,18 +230,20 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k,
       q[ST_DOF_THUMB_FLEX] = q[ST_DOF_FINGER_FLEX] = 0.0;
       return ik_run(r, &def, &t, q, what, k, err, errsz) ? ST_ERR_RANGE : ST_OK;
     }
-    case ST_PRIM_OPEN:
-      if (k < 2) {
+    case ST_PRIM_OPEN: {
+      const int near = open_near(k, v);
+      if (near) {
         ball[0] = PD.open_near_ball_x;
         ball[2] = rad + PD.open_near_gap;
       } else {
         ball[2] = rad + PD.open_high_gap;
       }
       if (place_palm_over_ball(r, s, k, ball, v, q, what, err, errsz)) return ST_ERR_RANGE;
-      q[ST_DOF_THUMB_OPPOSE] = k < 2 ? PD.open_near_oppose : PD.open_high_oppose;
-      q[ST_DOF_THUMB_FLEX] = k < 2 ? PD.open_near_thumb : PD.open_high_flex;
-      q[ST_DOF_FINGER_FLEX] = k < 2 ? PD.open_near_fingers : PD.open_high_flex;
+      q[ST_DOF_THUMB_OPPOSE] = near ? PD.open_near_oppose : PD.open_high_oppose;
+      q[ST_DOF_THUMB_FLEX] = near ? PD.open_near_thumb : PD.open_high_flex;
+      q[ST_DOF_FINGER_FLEX] = near ? PD.open_near_fingers : PD.open_high_flex;
       return ST_OK;
+    }
     case ST_PRIM_GRASP:
       ball[0] = PD.grasp_ball_x;
       ball[2] = rad + PD.grasp_gap;
@@ -253,14 +263,14 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k,
 
 /* the config keys a posture is built from (scene.*: where the object is; postures.*: where the
  * hand goes), named when it cannot be built: in-range values can still put it out of reach */
-static const char *posture_keys(int prim, int k) {
+static const char *posture_keys(int prim, int k, int near) {
   switch (prim) {
     case ST_PRIM_REACH:
       return "scene.object_center_x, scene.object_center_y, scene.table_top_z, "
              "scene.object_radius, postures.reach_clearance, postures.reach_max_steps, "
              "fitness.reach_height";
     case ST_PRIM_OPEN:
-      return k < 2 ? "scene.object_center_x, scene.object_center_y, scene.object_spacing, "
+      return near ? "scene.object_center_x, scene.object_center_y, scene.object_spacing, "
                      "scene.table_top_z, scene.object_radius, postures.open_near_ball_x, "
                      "postures.open_near_gap, postures.open_near_oppose, postures.open_near_thumb, "
                      "postures.open_near_fingers"
@@ -283,10 +293,10 @@ static const char *posture_keys(int prim, int k) {
 }
 
 /* appends the keys to the message in err */
-static void name_keys(int prim, int k, char *err, size_t errsz) {
+static void name_keys(int prim, int k, int near, char *err, size_t errsz) {
   if (!err || !errsz) return;
   const size_t n = strlen(err);
-  snprintf(err + n, errsz - n, " [keys: %s%s]", posture_keys(prim, k),
+  snprintf(err + n, errsz - n, " [keys: %s%s]", posture_keys(prim, k, near),
            prim == ST_PRIM_REACH ? ""
                                  : ", postures.ik_torso_pitch, postures.ik_wrist_prosup, "
                                    "postures.ik_wrist_pitch");
@@ -298,12 +308,12 @@ static stStatus build(const stRobot *r, const stScene *s, int prim, int k,
   double q[ST_NDOF];
   stStatus st = compute(r, s, prim, k, v, q, err, errsz);
   char why[256];
-  if (!st && !st_posture_check(r, s, prim, k, q, why, sizeof why)) {
+  if (!st && !check_kind(r, s, prim, k, open_near(k, v), q, why, sizeof why)) {
     st__errf(err, errsz, "posture %s %d: %s", st_primitive_name(prim), k, why);
     st = ST_ERR_RANGE;
   }
   if (st) {
-    name_keys(prim, k, err, errsz);
+    name_keys(prim, k, open_near(k, v), err, errsz);
     return st;
   }
   memcpy(qhat, q, sizeof q);
@@ -395,7 +405,7 @@ int st_posture_reach_steps(const stRobot *r, const stScene *s, int k, const doub
 }
 
 static int check_world(const stRobot *r, const stScene *s, const stWorld *w, int prim, int k,
-                       const double q[ST_NDOF], char *why, size_t n) {
+                       int near, const double q[ST_NDOF], char *why, size_t n) {
   const stContacts *c = &w->contacts;
   const double *palm = w->p[r->palm_body];
   const double *R = w->R[r->palm_body];
@@ -442,7 +452,7 @@ static int check_world(const stRobot *r, const stScene *s, const stWorld *w, int
         FAIL("palm centre %.3f m from the ball horizontally (expected <= %.2f: above it)", xy,
              CHECK_OPEN_XY);
       if (!(gap > 0.0)) FAIL("palm centre %.3f m above the ball top (expected above it)", gap);
-      if (k < 2) {
+      if (near) {
         if (!(gap <= CHECK_OPEN_NEAR_MAX_GAP))
           FAIL("palm %.3f m above the ball top (expected <= %.2f: around the object)", gap,
                CHECK_OPEN_NEAR_MAX_GAP);
@@ -507,6 +517,11 @@ static int check_world(const stRobot *r, const stScene *s, const stWorld *w, int
 int st_posture_check(const stRobot *r, const stScene *s, int prim, int k,
                      const double qhat[ST_NDOF], char *why, size_t n) {
   ST_ASSERT(r && s && qhat);
+  return check_kind(r, s, prim, k, k < 2, qhat, why, n);
+}
+
+static int check_kind(const stRobot *r, const stScene *s, int prim, int k, int near,
+                      const double qhat[ST_NDOF], char *why, size_t n) {
   if (prim < 0 || prim >= ST_NPRIM || k < 0 || k >= ST_NPOSTURE)
     FAIL("primitive %d, posture %d (expected 0..%d and 0..%d)", prim, k, ST_NPRIM - 1,
          ST_NPOSTURE - 1);
@@ -516,7 +531,7 @@ int st_posture_check(const stRobot *r, const stScene *s, int prim, int k,
   char err[256];
   if (st_world_create(r, s, &w, err, sizeof err)) FAIL("%s", err);
   st_world_reset(w, qhat, s->obj_pos[k], s->target[k % 2]);
-  int ok = check_world(r, s, w, prim, k, qhat, why, n);
+  int ok = check_world(r, s, w, prim, k, near, qhat, why, n);
   st_world_destroy(w);
   if (!ok || prim != ST_PRIM_REACH) return ok;
   /* reach: four distinct arm postures */
