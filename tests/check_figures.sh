@@ -34,6 +34,20 @@ has fig_chain "fig_chain: $FIG/chain_run.csv: 3 generations, the best solved the
 refuses "fig_chain: a run without chained trials" "$FIG/prims_run/fitness.csv:1: header without best_c0 (expected a chain-stage run's fitness.csv" fig_chain.py "$FIG/prims_run"
 sed '3s/,75.25,/,y,/' "$FIG/chain_run.csv" > "$tmp/c1.csv"
 refuses "fig_chain: a bad number" "$tmp/c1.csv:3: best_F_chain 'y' (expected a finite number)" fig_chain.py "$tmp/c1.csv"
+# the run's integration tests as points: integration_g3/ by hand, 3 genotypes with 25, 30 and 10
+# of 40: 65 of 120, median 25; integration_all_g3/ (another test of the run) is not one of them
+mkdir -p "$tmp/crun/integration_g3" "$tmp/crun/integration_all_g3"
+cp "$FIG/chain_run.csv" "$tmp/crun/fitness.csv"
+head -1 data/evolved/chain_s1_run/integration_g102/summary.csv > "$tmp/crun/integration_g3/summary.csv"
+for r in "0,25" "1,30" "2,10"; do
+  echo "integration,incremental,0,${r%,*},${r#*,},40,0,0,x,0.5,1,0,-1" >> "$tmp/crun/integration_g3/summary.csv"
+done
+echo "not a summary" > "$tmp/crun/integration_all_g3/summary.csv"
+draw fig_chain_int fig_chain.py "$tmp/crun" --label "with tests" -- \
+  "with tests" "integration test, top 10 (share of trials)" "thesis: median 25 of 40"
+has fig_chain_int "fig_chain: $tmp/crun/fitness.csv: 3 generations, the best solved the 16 fixed trials in 2, a grasp hand-over in 2 (first 1), a chained trial in 2 (first 1, most 3 of 8); integration test at 3: 65 of 120, median 25 of 40"
+sed -i '3s/^integration,/robustness,/' "$tmp/crun/integration_g3/summary.csv"
+refuses "fig_chain: a test that is not the integration test" "$tmp/crun/integration_g3/summary.csv:3: test 'robustness' (expected an integration test's summary.csv" fig_chain.py "$tmp/crun"
 
 # ---- Figs. 3.5-3.8: the hand-made integrated run, and a real 2-generation ST-CT run
 "$APPDIR/evolve" configs/integrated_stct.cfg --set "integrated.populations=data/evolved/simple_prim_s*.genome" \

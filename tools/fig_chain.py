@@ -10,11 +10,18 @@ term F_chain on the right axis; one panel per run.
 RUN is an `evolve --out` directory of a run with main-prim's hand-over and chained trials (or
 its fitness.csv): columns generation, best_t0..15, best_h0..11, best_c0.., best_F_chain, and
 best_v0..7 when the run has varied trials (docs/PROTOCOL.md, "Hand-over trials and chained
-trials"). Prints a line per run: generations, those whose best solved the 16 fixed trials,
-those with a grasp hand-over and with a chained trial solved. Default outputs fig_chain.png
-and fig_chain.svg.
+trials"). Where the directory holds integration tests of its checkpoints, RUN/integration_gG/
+summary.csv (`./apps/posteval integration ... --out RUN/integration_gG` on the checkpoint
+after G generations), each is a point at G: the share of its trials that succeeded, beside the
+thesis's median of 25 of 40. Prints a line per run: generations, those whose best solved the
+16 fixed trials, those with a grasp hand-over and with a chained trial solved, and each
+integration test (successes of trials, the median per genotype). Default outputs
+fig_chain.png and fig_chain.svg.
 """
+import glob
 import os
+import re
+import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -27,6 +34,29 @@ NFIXED = csvschema.FITNESS_PRIMITIVE_TRIALS
 NHAND = csvschema.FITNESS_HANDOVER_TRIALS
 NPOST = NHAND // 3  # hand-over trials per primitive: open, grasp, move in that order
 WHAT = "a chain-stage run's fitness.csv (main-prim with stage.handover and stage.chain_trials)"
+TEST_WHAT = "an integration test's summary.csv (./apps/posteval integration)"
+THESIS_MEDIAN = 25 / 40  # Fig. 3.3: the median genotype succeeded in 25 of its 40 trials
+
+
+def integration_tests(run_dir):
+    """[(G, successes, trials, median successes per genotype, trials per genotype)] of the
+    run's integration_gG/summary.csv, by G"""
+    out = []
+    for path in glob.glob(os.path.join(run_dir, "integration_g*", "summary.csv")):
+        m = re.fullmatch(r"integration_g(\d+)", os.path.basename(os.path.dirname(path)))
+        if not m:
+            continue  # another test of the run (integration_all_g77: the whole population)
+        cols = csvschema.pick(csvschema.SUMMARY, "test", "individual", "successes", "trials")
+        rows = figlib.read_csv(path, cols, TEST_WHAT)
+        for i, r in enumerate(rows):
+            if r["test"] != "integration":
+                figlib.die(f"{path}:{i + 2}: test '{r['test']}' (expected {TEST_WHAT})")
+        if not rows:
+            figlib.die(f"{path}: no rows (expected {TEST_WHAT})")
+        per = [r["successes"] for r in rows]
+        out.append((int(m.group(1)), sum(per), sum(r["trials"] for r in rows),
+                    statistics.median(per), rows[0]["trials"]))
+    return sorted(out)
 
 
 def header_of(path):
@@ -66,7 +96,8 @@ def load(arg):
         series[name] = [count(r, H, NPOST, p * NPOST) for r in rows]
     if nvaried:
         series["varied"] = [count(r, V, nvaried) for r in rows]
-    return {"path": path, "nchain": nchain, "nvaried": nvaried, "s": series}
+    tests = integration_tests(arg) if os.path.isdir(arg) else []
+    return {"path": path, "nchain": nchain, "nvaried": nvaried, "s": series, "tests": tests}
 
 
 # (series, trials it counts of, colour, line width, legend)
@@ -86,10 +117,15 @@ def panel(ax, run, label):
     gs = s["generation"]
     for name, n, colour, lw, legend in lines(run):
         ax.step(gs, [v / n for v in s[name]], where="mid", color=colour, lw=lw, label=legend)
+    if run["tests"]:
+        ax.plot([t[0] for t in run["tests"]], [t[1] / t[2] for t in run["tests"]], "D",
+                color="#7f0000", ms=5, label="integration test, top 10 (share of trials)")
+        ax.axhline(THESIS_MEDIAN, color="#7f0000", ls=":", lw=1.0,
+                   label="thesis: median 25 of 40")
     ax.set_ylim(-0.03, 1.03)
     ax.set_ylabel("share solved by the best")
     ax.set_title(label, fontsize=10)
-    ax.set_xlim(gs[0], max(gs[-1], gs[0] + 1))
+    ax.set_xlim(gs[0], max([gs[-1], gs[0] + 1] + [t[0] + 1 for t in run["tests"]]))
     ax.grid(True, color="#eee")
     right = ax.twinx()
     right.plot(gs, s["F_chain"], color="#1f77b4", ls="--", lw=0.9, label="F_chain (right)")
@@ -110,7 +146,9 @@ def summary(run):
     return (f"{figlib.PROG}: {run['path']}: {len(gs)} generations, the best solved the {NFIXED} fixed "
             f"trials in {fixed}, a grasp hand-over in {len(grasp)} (first {grasp[0] if grasp else 'none'})"
             f", a chained trial in {len(chained)} (first {chained[0] if chained else 'none'}, most "
-            f"{max(s['chained'])} of {run['nchain']})")
+            f"{max(s['chained'])} of {run['nchain']})"
+            + "".join(f"; integration test at {g}: {k} of {n}, median {m:g} of {per}"
+                      for g, k, n, m, per in run["tests"]))
 
 
 def main():
