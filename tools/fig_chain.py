@@ -26,6 +26,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
+import fig_integration  # noqa: E402  (its reader of integration summaries)
 import figlib  # noqa: E402
 
 figlib.PROG = "fig_chain"
@@ -34,7 +35,6 @@ NFIXED = csvschema.FITNESS_PRIMITIVE_TRIALS
 NHAND = csvschema.FITNESS_HANDOVER_TRIALS
 NPOST = NHAND // 3  # hand-over trials per primitive: open, grasp, move in that order
 WHAT = "a chain-stage run's fitness.csv (main-prim with stage.handover and stage.chain_trials)"
-TEST_WHAT = "an integration test's summary.csv (./apps/posteval integration)"
 THESIS_MEDIAN = 25 / 40  # Fig. 3.3: the median genotype succeeded in 25 of its 40 trials
 
 
@@ -46,13 +46,7 @@ def integration_tests(run_dir):
         m = re.fullmatch(r"integration_g(\d+)", os.path.basename(os.path.dirname(path)))
         if not m:
             continue  # another test of the run (integration_all_g77: the whole population)
-        cols = csvschema.pick(csvschema.SUMMARY, "test", "individual", "successes", "trials")
-        rows = figlib.read_csv(path, cols, TEST_WHAT)
-        for i, r in enumerate(rows):
-            if r["test"] != "integration":
-                figlib.die(f"{path}:{i + 2}: test '{r['test']}' (expected {TEST_WHAT})")
-        if not rows:
-            figlib.die(f"{path}: no rows (expected {TEST_WHAT})")
+        rows = fig_integration.load_all([path], None, only=True)
         per = [r["successes"] for r in rows]
         out.append((int(m.group(1)), sum(per), sum(r["trials"] for r in rows),
                     statistics.median(per), rows[0]["trials"]))

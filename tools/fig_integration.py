@@ -47,9 +47,15 @@ def check_row(path, r):
         figlib.die(f"{n}: excluded {r['excluded']} (expected 0: the integration test excludes no one)")
 
 
-def load(path):
-    """one file's integration rows, each checked on its own"""
-    rows = [r for r in figlib.read_csv(path, COLUMNS, "a post-evaluation summary") if r["test"] == TEST]
+def load(path, only=False):
+    """one file's integration rows, each checked on its own; only: a row of another test is
+    refused (a file that should hold the integration test alone), else skipped"""
+    rows = figlib.read_csv(path, COLUMNS, "a post-evaluation summary")
+    for r in rows:
+        if only and r["test"] != TEST:
+            figlib.die(f"{path}:{r['_line']}: test '{r['test']}' (expected an integration test's "
+                       "summary.csv (./apps/posteval integration))")
+    rows = [r for r in rows if r["test"] == TEST]
     if not rows:
         figlib.die(f"{path}: no rows of test '{TEST}' (expected the integration test's summary rows)")
     for r in rows:
@@ -63,14 +69,15 @@ def where(r, other):
     return f"line {other['_line']}" if other["_file"] == r["_file"] else f"{other['_path']}:{other['_line']}"
 
 
-def load_all(paths, labels):
+def load_all(paths, labels, only=False):
     """the rows of every file, each file's condition replaced by its label if given; every
-    individual with the first row's trials, and once only (in one file or across files)"""
+    individual with the first row's trials, and once only (in one file or across files);
+    only: as load's"""
     if labels and len(labels) != len(paths):
         figlib.die(f"--label: {len(labels)} names for {len(paths)} summaries (expected one per file)")
     rows, seen = [], {}
     for i, path in enumerate(paths):
-        part = load(path)
+        part = load(path, only)
         for r in part:
             r["_file"] = i  # the same path given twice is two files
         if labels:
