@@ -139,8 +139,8 @@ else ko "make replicate prices first"; fi
 # 6 x 10 x 7 x 7 x 4 x 10 x 0.1 = 12120 s: 83.77 core-hours (at most 278.37); on 2 threads half
 # of it; on 64, a generation of 100 takes 2 rounds (50 at a time): 289468 / 50 + 12120 / 64 s =
 # 1.66 h (at most 990000 / 50 + 12120 / 64 s = 5.55 h); the chain stage (configs/chain_prim.cfg's
-# cap, 100 generations, the first 60 replacing): 10 x 100 x 60 x 0.5 = 30000 s = 8.3 core-hours
-# (4.2 h on 2 threads), then 10 x 100 x 40 x 1 = 40000 s = 11.1 core-hours (5.6 h)
+# budget, 150 generations, the first 60 replacing): 10 x 100 x 60 x 0.5 = 30000 s = 8.3
+# core-hours (4.2 h on 2 threads), then 10 x 100 x 90 x 1 = 90000 s = 25 core-hours (12.5 h)
 assume=(--assume simple-prim=0.002 --assume main-prim=0.5 --assume integration=0.05
   --assume 'integrated-*=0.6' --assume 'robustness-*=0.1' --assume 'generalisation-*=0.1' --assume chain-replace=0.5 --assume chain=1)
 price() { python3 tools/replicate_cost.py --preset full --runs 10 --out "$tmp/q" --eval-cost "$BUILD/eval_cost" "${assume[@]}" "$@"; }
@@ -152,7 +152,7 @@ if price --protocol thesis --threads 2 > "$tmp/q.out" 2>&1 &&
    grep -qx "Expected: 83.8 core-hours, 1.7 hours on 64 threads; at most 278 core-hours, 5.6 hours." "$tmp/q64.out" &&
    price --protocol chain --threads 2 > "$tmp/qc.out" &&
    grep -qE "^chain: replace +10 +0.5 +60 +60,000 +8.3 +4.2 +\| +60 +8.3 +4.2$" "$tmp/qc.out" &&
-   grep -qE "^chain: extra +10 +1 +40 +40,000 +11.1 +5.6 +\| +40 +11.1 +5.6$" "$tmp/qc.out" &&
+   grep -qE "^chain: extra +10 +1 +90 +90,000 +25.0 +12.5 +\| +90 +25.0 +12.5$" "$tmp/qc.out" &&
    [ ! -e "$tmp/q/cost/costs.csv" ]; then
   ok "cost: the arithmetic (costs given, numbers by hand; 2 and 64 threads, PROTOCOL=chain)"
 else ko "cost arithmetic" "$(cat "$tmp/q.out" "$tmp/q64.out" "$tmp/qc.out" 2> /dev/null)"; fi

@@ -245,9 +245,10 @@ def plan_steps(a, meter):
             steps.append(evolution("chain: extra" if replace else "chain", a.runs, chain,
                                    cap - replace))
         notes.append("chain: %sexpected and at most its cap, %d generations (%s): a chain run "
-                     "ends earlier when ga.success_genotypes genotypes of one generation solve "
-                     "the 16 fixed and all chained trials (stage.chain_complete), not yet "
-                     "measured often enough to price." % (
+                     "ends earlier only when ga.success_genotypes genotypes of one generation "
+                     "solve the 16 fixed and all chained trials (stage.chain_complete), an "
+                     "early exit that no run has taken so far (docs/PROTOCOL.md, 'The chain "
+                     "stage's budget')." % (
                          "the first %d (postures.vary_replace_generations) priced at generation "
                          "0's trials, the rest at the last generation's; " % replace
                          if replace and cap > replace else "", cap,
