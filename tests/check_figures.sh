@@ -38,7 +38,7 @@ refuses "fig_chain: a bad number" "$tmp/c1.csv:3: best_F_chain 'y' (expected a f
 # of 40: 65 of 120, median 25; integration_all_g3/ (another test of the run) is not one of them
 mkdir -p "$tmp/crun/integration_g3" "$tmp/crun/integration_all_g3"
 cp "$FIG/chain_run.csv" "$tmp/crun/fitness.csv"
-head -1 data/evolved/chain_s1_run/integration_g102/summary.csv > "$tmp/crun/integration_g3/summary.csv"
+head -1 data/evolved/chain_s1/integration_g102/summary.csv > "$tmp/crun/integration_g3/summary.csv"
 for r in "0,25" "1,30" "2,10"; do
   echo "integration,incremental,0,${r%,*},${r#*,},40,0,0,x,0.5,1,0,-1" >> "$tmp/crun/integration_g3/summary.csv"
 done
