@@ -10,11 +10,13 @@ CHECK=check_replicate
 BUILD=${BUILD:-build}
 REP="make --no-print-directory -s -f tools/replicate.mk PRESET=tiny THREADS=1"
 
-# the uninterrupted replication
+# the uninterrupted replication (PROTOCOL=chain, the default: the chain stage between the
+# primitive runs and the integration test)
 if $REP OUT="$tmp/a" > "$tmp/a.out" 2>&1; then ok "PRESET=tiny runs every step"; else
   ko "PRESET=tiny runs every step" "$(tail -5 "$tmp/a.out")"; fi
 missing=""
-for f in prims-s1/population.genome prims-s2/population.genome \
+for f in prims-s1/population.genome prims-s2/population.genome chain-s1/population.genome \
+  chain-s2/population.genome figures/fig_chain.png \
   posteval/integration/summary.csv int-stct-s1/population.genome int-ni-s2/population.genome \
   posteval/robustness-ct/summary.csv posteval/generalisation-st0/trials.csv \
   stats/table_3_1.txt stats/table_3_2.txt stats/table_3_3.txt stats/selftalk.csv \
@@ -29,6 +31,11 @@ sections=0
 for h in "## Primitive stages" "## Integration test" "## Integrated stage" "## Robustness test" \
   "## Generalisation test" "## Self talk against"; do grep -qF "$h" "$r" && sections=$((sections + 1)); done
 if [ $sections = 6 ]; then ok "report.md has its six sections"; else ko "report.md sections" "$sections of 6"; fi
+# which primitives it took, and the chain stage's table: both runs, 2 generations, 2 chained trials
+if grep -qF 'Primitives: protocol `chain` (the default)' "$r" && grep -qF "### The chain stage" "$r" &&
+   [ "$(grep -cE '^\| [12] \| 2 \| [0-9]+/16 \| [0-2]/2 \|$' "$r")" = 2 ]; then
+  ok "report.md: the chain protocol named, its runs' table"
+else ko "report.md, the chain protocol" "$(grep -A5 'chain stage' "$r")"; fi
 # Table 3.1 as printed (data/thesis/results.json), the integrated runs of both seeds
 if grep -qF "| ST-CT | - | 24 | 9.5** | 8.5** |" "$r" && grep -qF "| 581 (426, 700) |" "$r" &&
   [ "$(grep -cE '^\| (ST-CT|ST|CT|NI) \| [12] \| 2 \| [0-9.]+ \|.* [0-4]/4 \|$' "$r")" = 8 ]; then
@@ -77,7 +84,7 @@ else ko "stopped after a run's last checkpoint" "$(cat "$tmp/d.out")"; fi
 
 # PROTOCOL=chain: each primitive run continued by the chain stage (configs/chain_prim.cfg) from
 # its population, the same seed, and the integration test on those runs
-if $REP OUT="$tmp/a" PROTOCOL=chain chain > "$tmp/ch.out" 2>&1 &&
+if $REP OUT="$tmp/a" chain > "$tmp/ch.out" 2>&1 &&
    grep -q "^chain_trials = 2$" "$tmp/a/chain-s2/config.ini" &&
    grep -q "^handover = true$" "$tmp/a/chain-s2/config.ini" &&
    grep -q "^init_population = $tmp/a/prims-s2/population.genome$" "$tmp/a/chain-s2/config.ini" &&
@@ -86,15 +93,26 @@ if $REP OUT="$tmp/a" PROTOCOL=chain chain > "$tmp/ch.out" 2>&1 &&
    [ "$(head -1 "$tmp/a/chain-s1/fitness.csv" | grep -o 'best_h[0-9][0-9]*' | wc -l)" = 12 ]; then
   ok "PROTOCOL=chain: the chain stage from each primitive run"
 else ko "PROTOCOL=chain" "$(tail -3 "$tmp/ch.out")"; fi
-if [ "$($REP jobs STEP=chain OUT=x PROTOCOL=chain | wc -l)" = 2 ] &&
-   $REP -n OUT="$tmp/a" PROTOCOL=chain "$tmp/a/posteval/integration/summary.csv" 2> /dev/null |
-   grep -q "posteval integration .*chain-s1/population.genome"; then
+# (make's output read whole before grep: with pipefail, grep -q leaving early fails the pipe)
+dry() { $REP -n "$@" 2> /dev/null; }
+out=$(dry OUT="$tmp/a" "$tmp/a/posteval/integration/summary.csv")
+if [ "$($REP jobs STEP=chain OUT=x | wc -l)" = 2 ] &&
+   grep -q "posteval integration .*chain-s1/population.genome" <<< "$out"; then
   ok "PROTOCOL=chain: the integration test takes the chain runs"
 else ko "PROTOCOL=chain integration"; fi
+# PROTOCOL=thesis: no chain stage; the integration test and the report take the primitive runs
+out=$(dry OUT="$tmp/t" PROTOCOL=thesis "$tmp/t/posteval/integration/summary.csv")
+if grep "posteval integration" <<< "$out" | grep -q "prims-s1/population.genome .*prims-s2/population.genome" &&
+   ! grep -q "chain" <<< "$out" &&
+   python3 tools/replicate_report.py "$tmp/a" --preset tiny --runs 2 --protocol thesis -o "$tmp/rt.md" &&
+   grep -qF 'Primitives: protocol `thesis`' "$tmp/rt.md" && ! grep -qF "### The chain stage" "$tmp/rt.md"; then
+  ok "PROTOCOL=thesis: the primitive runs alone, and the report says so"
+else ko "PROTOCOL=thesis"; fi
 # the chain stage's figure (tools/fig_chain.py) from the chain runs, only with PROTOCOL=chain
-if $REP -n OUT="$tmp/f" PROTOCOL=chain "$tmp/f/figures/.done" 2> /dev/null |
-     grep -q "tools/fig_chain.py $tmp/f/chain-s1 $tmp/f/chain-s2 -o $tmp/f/figures/fig_chain.png" &&
-   ! $REP -n OUT="$tmp/f" "$tmp/f/figures/.done" 2> /dev/null | grep -q fig_chain; then
+out=$(dry OUT="$tmp/f" PROTOCOL=chain "$tmp/f/figures/.done")
+out0=$(dry OUT="$tmp/f" PROTOCOL=thesis "$tmp/f/figures/.done")
+if grep -q "tools/fig_chain.py $tmp/f/chain-s1 $tmp/f/chain-s2 -o $tmp/f/figures/fig_chain.png" <<< "$out" &&
+   grep -q "tools/fig_int_fitness.py" <<< "$out0" && ! grep -q fig_chain <<< "$out0"; then
   ok "PROTOCOL=chain: the chain stage's figure from the chain runs"
 else ko "PROTOCOL=chain figure"; fi
 $REP OUT="$tmp/c" PROTOCOL=mine > /dev/null 2> "$tmp/e"
@@ -105,23 +123,23 @@ if [ $? != 0 ] && grep -q "PROTOCOL=mine: expected chain or thesis" "$tmp/e"; th
 # total, from costs measured once (OUT/cost/costs.csv) and taken from there the second time
 COST="$REP EVAL_COST=$BUILD/eval_cost COST_SAMPLE=1"
 rows='^prims: simple-prim |^prims: main-prim |^integration test |^integrated (ST-CT|ST|CT|NI) |^robustness |^generalisation |^stats, figures, report |^total '
-if $COST cost OUT="$tmp/p" > "$tmp/p.out" 2> "$tmp/p.err" &&
+if $COST cost OUT="$tmp/p" PROTOCOL=thesis > "$tmp/p.out" 2> "$tmp/p.err" &&
    [ "$(grep -cE "$rows" "$tmp/p.out")" = 11 ] && grep -q "^Expected: .* core-hours, .* hours on 1 thread; at most" "$tmp/p.out" &&
    grep -q "measuring what one evaluation costs" "$tmp/p.err" && grep -q "measured now on host" "$tmp/p.out" &&
    [ "$(grep -c "^$(hostname)," "$tmp/p/cost/costs.csv")" = 17 ]; then
   ok "cost: a row per step and a total, 17 kinds measured"
 else ko "cost" "$(cat "$tmp/p.err"; head -20 "$tmp/p.out")"; fi
 cp "$tmp/p/cost/costs.csv" "$tmp/costs1.csv"
-if $COST cost OUT="$tmp/p" > "$tmp/p2.out" 2> "$tmp/p.err" && [ ! -s "$tmp/p.err" ] &&
+if $COST cost OUT="$tmp/p" PROTOCOL=thesis > "$tmp/p2.out" 2> "$tmp/p.err" && [ ! -s "$tmp/p.err" ] &&
    grep -q "measured earlier on host" "$tmp/p2.out" && cmp -s "$tmp/p/cost/costs.csv" "$tmp/costs1.csv" &&
    [ "$(grep -cE "$rows" "$tmp/p2.out")" = 11 ]; then
   ok "cost: the second time from OUT/cost/costs.csv, nothing measured"
 else ko "cost, cached" "$(cat "$tmp/p.err")"; fi
-if $COST cost OUT="$tmp/p" REMEASURE=1 > "$tmp/p3.out" 2> "$tmp/p.err" &&
+if $COST cost OUT="$tmp/p" PROTOCOL=thesis REMEASURE=1 > "$tmp/p3.out" 2> "$tmp/p.err" &&
    grep -q "measured now on host" "$tmp/p3.out" && [ "$(grep -c "^$(hostname)," "$tmp/p/cost/costs.csv")" = 17 ]; then
   ok "cost: REMEASURE=1 measures again"
 else ko "cost, REMEASURE=1" "$(cat "$tmp/p.err")"; fi
-if $COST cost OUT="$tmp/p" PROTOCOL=chain > "$tmp/p4.out" 2> "$tmp/p.err" &&
+if $COST cost OUT="$tmp/p" > "$tmp/p4.out" 2> "$tmp/p.err" &&
    [ "$(grep -cE "$rows|^chain: replace " "$tmp/p4.out")" = 12 ] &&
    grep -q "chain replace individual .* of data/evolved/chain_candidates" "$tmp/p4.out" &&
    ! grep -q "^chain: extra\|chain extra individual" "$tmp/p4.out"; then

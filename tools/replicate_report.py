@@ -2,9 +2,10 @@
 """replicate_report.py: report.md of a replication (tools/replicate.mk), each of the thesis's
 numbers (data/thesis/results.json) beside ours.
 
-    replicate_report.py OUT [--preset NAME] [--runs N] [-o report.md]
+    replicate_report.py OUT [--preset NAME] [--runs N] [--protocol chain|thesis] [-o report.md]
 
-Reads OUT/prims-s*/fitness.csv, OUT/int-<cond>-s*/fitness.csv, OUT/summary/*.csv,
+Reads OUT/prims-s*/fitness.csv (and OUT/chain-s*/fitness.csv with --protocol chain),
+OUT/int-<cond>-s*/fitness.csv, OUT/summary/*.csv,
 OUT/stats/*.txt (./apps/stats's tables) and links OUT/figures/*.png. Written atomically."""
 import argparse
 import csv
@@ -21,11 +22,23 @@ import runconfig  # noqa: E402
 
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 FITNESS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success", "best",
-                         "best_bonus", "best_bonus_auto", "best_successes", "best_t%d")
+                         "best_bonus", "best_bonus_auto", "best_successes", "best_t%d", "best_c%d")
 SUMMARY = csvschema.pick(csvschema.SUMMARY, "condition", "run", "individual", "successes", "trials",
                          "open_jumped")
 THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
 CONDS = [("stct", "ST-CT"), ("st", "ST"), ("ct", "CT"), ("ni", "NI")]
+# what the primitive runs are (tools/replicate.mk's PROTOCOL), said at the top of the report
+PROTOCOLS = {
+    "chain": "Primitives: protocol `chain` (the default): each primitive run of the thesis's "
+             "protocol (`configs/prims.cfg`) continued by the chain stage (`configs/chain_prim.cfg`: "
+             "hand-over, varied and chained trials beside the 16 fixed ones; SPEC §12, "
+             "`docs/PROTOCOL.md`), whose final populations the integration test and the integrated "
+             "stage take. Not the thesis's protocol: `PROTOCOL=thesis` replicates that one alone.",
+    "thesis": "Primitives: protocol `thesis`: the thesis's primitive stages alone "
+              "(`configs/prims.cfg`), whose final populations the integration test and the "
+              "integrated stage take (on the committed runs their integration test gives 0 of "
+              "1200: `docs/PROTOCOL.md`).",
+}
 
 
 def die(msg):
@@ -118,6 +131,21 @@ def section_prims(out, th):
                   tt["median"], tt["lower_quartile"], tt["upper_quartile"], fmt5(total)),
               "", "![Fig. 3.1](figures/fig3_1.png)", ""]
     return lines
+
+
+def section_chain(out):
+    """the chain stage (PROTOCOL=chain): per run, its generations and what its final best solves
+    of the thesis's 16 fixed trials and of its chained trials"""
+    lines = ["### The chain stage (SPEC §12; not the thesis's)", "",
+             "| run (seed) | generations run | final best: fixed trials solved | "
+             "final best: chained trials solved |", "|---|---|---|---|"]
+    for path in sorted(glob.glob(os.path.join(out, "chain-s*", "fitness.csv"))):
+        last = read_rows(path)[-1]
+        fixed = sum(int(last["best_t%d" % k]) for k in range(16))
+        chained = [int(v) for k, v in last.items() if re.fullmatch(r"best_c\d+", k)]
+        lines.append("| %d | %d | %d/16 | %d/%d |" % (run_seed(path), int(last["generation"]) + 1,
+                                                    fixed, sum(chained), len(chained)))
+    return lines + [""]
 
 
 def summary_by(out, test):
@@ -225,6 +253,7 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--preset", default="full")
     ap.add_argument("--runs", type=int, default=0)
+    ap.add_argument("--protocol", choices=sorted(PROTOCOLS), default="chain")
     ap.add_argument("-o", dest="report", default=None)
     a = ap.parse_args()
     if not os.path.isdir(a.out):
@@ -233,12 +262,16 @@ def main():
         th = json.load(f)
     lines = ["# Replication of the study", "",
              "Preset `%s`, %d runs per stage and condition, in `%s` (tools/replicate.mk). The "
-             "thesis's numbers come from `data/thesis/results.json`." % (a.preset, a.runs, a.out), ""]
+             "thesis's numbers come from `data/thesis/results.json`." % (a.preset, a.runs, a.out), "",
+             PROTOCOLS[a.protocol], ""]
     if a.preset != "full":
         lines += ["**A quick look, not a replication:** the `%s` preset caps the generations and "
                   "shrinks the post-evaluations, so its numbers are not comparable with the "
                   "thesis's." % a.preset, ""]
-    lines += section_prims(a.out, th) + section_integration(a.out, th) + section_integrated(a.out)
+    lines += section_prims(a.out, th)
+    if a.protocol == "chain":
+        lines += section_chain(a.out)
+    lines += section_integration(a.out, th) + section_integrated(a.out)
     lines += section_test(a.out, th, "robustness", "Robustness test (thesis §3.2, Fig. 3.4)",
                           "table_3_1.txt", ["fig3_4"], "3.1", "A.1", th["conditions"])
     lines += section_test(a.out, th, "generalisation", "Generalisation test (thesis §3.2.5)",
