@@ -108,6 +108,13 @@ if grep "posteval integration" <<< "$out" | grep -q "prims-s1/population.genome 
    grep -qF 'Primitives: protocol `thesis`' "$tmp/rt.md" && ! grep -qF "### The chain stage" "$tmp/rt.md"; then
   ok "PROTOCOL=thesis: the primitive runs alone, and the report says so"
 else ko "PROTOCOL=thesis"; fi
+# a report of the chain protocol from a directory without its chain runs is refused
+mkdir -p "$tmp/nochain/prims-s1" && cp "$tmp/a/prims-s1/"{fitness.csv,config.ini} "$tmp/nochain/prims-s1/"
+if ! python3 tools/replicate_report.py "$tmp/nochain" --protocol chain -o "$tmp/nc.md" 2> "$tmp/e" &&
+   grep -q "$tmp/nochain: no chain-s\*/fitness.csv (expected the chain runs of --protocol chain)" "$tmp/e" &&
+   [ ! -e "$tmp/nc.md" ]; then
+  ok "report.md of the chain protocol without chain runs is refused"
+else ko "report without chain runs" "$(cat "$tmp/e")"; fi
 # the chain stage's figure (tools/fig_chain.py) from the chain runs, only with PROTOCOL=chain
 out=$(dry OUT="$tmp/f" PROTOCOL=chain "$tmp/f/figures/.done")
 out0=$(dry OUT="$tmp/f" PROTOCOL=thesis "$tmp/f/figures/.done")

@@ -139,7 +139,10 @@ def section_chain(out):
     lines = ["### The chain stage (SPEC §12; not the thesis's)", "",
              "| run (seed) | generations run | final best: fixed trials solved | "
              "final best: chained trials solved |", "|---|---|---|---|"]
-    for path in sorted(glob.glob(os.path.join(out, "chain-s*", "fitness.csv"))):
+    paths = sorted(glob.glob(os.path.join(out, "chain-s*", "fitness.csv")))
+    if not paths:
+        die("%s: no chain-s*/fitness.csv (expected the chain runs of --protocol chain)" % out)
+    for path in paths:
         last = read_rows(path)[-1]
         fixed = sum(int(last["best_t%d" % k]) for k in range(16))
         chained = [int(v) for k, v in last.items() if re.fullmatch(r"best_c\d+", k)]
