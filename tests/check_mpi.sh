@@ -17,16 +17,25 @@ cfg=configs/simple_prim.cfg
 
 # ---- the cluster scripts (always) ----
 out=$(DRY_RUN=1 SLURM_ARRAY_TASK_ID=13 bash tools/cluster/replication.sbatch integrated)
+out4=$(DRY_RUN=1 SLURM_ARRAY_TASK_ID=2 bash tools/cluster/replication.sbatch chain)
+out5=$(DRY_RUN=1 PROTOCOL=thesis RUNS=/scratch/r SLURM_ARRAY_TASK_ID=13 bash tools/cluster/replication.sbatch integrated)
+subm=$(DRY_RUN=1 bash tools/cluster/submit_replication.sh | sed 's/^sbatch --parsable --export=ALL //')
+subm0=$(DRY_RUN=1 PROTOCOL=thesis bash tools/cluster/submit_replication.sh | grep -c ' chain$')
 out2=$(DRY_RUN=1 SLURM_ARRAY_TASK_ID=9 SLURM_CPUS_PER_TASK=16 bash tools/cluster/replication.sbatch prims)
 out3=$(DRY_RUN=1 SLURM_NTASKS=64 bash tools/cluster/evolve_mpi.sbatch configs/main_prim.cfg 3)
 SLURM_ARRAY_TASK_ID=40 bash tools/cluster/replication.sbatch integrated 2> "$tmp/arr.err"; rc=$?
-if [ "$out" = "./apps/evolve configs/integrated_st.cfg --seed 4 --threads 1 --out runs/integrated_st-s4 --resume" ] &&
+if [ "$out" = "./apps/evolve configs/integrated_st.cfg --seed 4 --threads 1 --out runs/integrated_st-s4 --resume --set integrated.populations=runs/chain-s*/population.genome" ] &&
+   [ "$out4" = "./apps/evolve configs/chain_prim.cfg --seed 3 --threads 1 --out runs/chain-s3 --resume --set stage.init_population=runs/prims-s3/population.genome" ] &&
+   [ "$out5" = "./apps/evolve configs/integrated_st.cfg --seed 4 --threads 1 --out /scratch/r/integrated_st-s4 --resume --set integrated.populations=/scratch/r/prims-s*/population.genome" ] &&
+   [ "$subm" = "--array=0-9 tools/cluster/replication.sbatch prims
+--array=0-9 --dependency=afterok:PRIMS_JOB tools/cluster/replication.sbatch chain
+--array=0-39 --dependency=afterok:CHAIN_JOB tools/cluster/replication.sbatch integrated" ] && [ "$subm0" = 0 ] &&
    [ "$out2" = "./apps/evolve configs/prims.cfg --seed 10 --threads 16 --out runs/prims-s10 --resume" ] &&
    [ "$out3" = "mpirun -n 65 --oversubscribe --bind-to none ./apps/evolve configs/main_prim.cfg --seed 3 --threads 1 --out runs/main_prim-s3 --resume" ] &&
    [ $rc = 2 ] && grep -q "task 40: 4 conditions x 10 seeds (tasks 0-39)" "$tmp/arr.err"; then
-  ok "cluster scripts: array task -> config, seed, directory; MPI across tasks; out of range refused"
+  ok "cluster scripts: array task -> config, seed, directory; the chain stage from its seed's primitive run, the integrated runs from the protocol's; MPI across tasks; out of range refused"
 else
-  ko "cluster script commands" "$out | $out2 | $out3 | $(cat "$tmp/arr.err")"
+  ko "cluster script commands" "$out | $out2 | $out3 | $out4 | $out5 | $subm | $subm0 | $(cat "$tmp/arr.err")"
 fi
 # an array task run for real (no SLURM: one task), twice: the second finds the run complete
 small=(--generations 2 --set ga.population=8 --set ga.elites=2 --set ga.parents=4 --set ga.success_genotypes=2)
