@@ -51,10 +51,10 @@ def load(path, only=False):
     """one file's integration rows, each checked on its own; only: a row of another test is
     refused (a file that should hold the integration test alone), else skipped"""
     rows = figlib.read_csv(path, COLUMNS, "a post-evaluation summary")
-    for r in rows:
-        if only and r["test"] != TEST:
-            figlib.die(f"{path}:{r['_line']}: test '{r['test']}' (expected an integration test's "
-                       "summary.csv (./apps/posteval integration))")
+    other = next((r for r in rows if r["test"] != TEST), None)
+    if only and other:
+        figlib.die(f"{path}:{other['_line']}: test '{other['test']}' (expected an integration "
+                   "test's summary.csv (./apps/posteval integration))")
     rows = [r for r in rows if r["test"] == TEST]
     if not rows:
         figlib.die(f"{path}: no rows of test '{TEST}' (expected the integration test's summary rows)")

@@ -27,6 +27,7 @@ SUMMARY = csvschema.pick(csvschema.SUMMARY, "condition", "run", "individual", "s
                          "open_jumped")
 THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
 CONDS = [("stct", "ST-CT"), ("st", "ST"), ("ct", "CT"), ("ni", "NI")]
+NFIXED = csvschema.FITNESS_PRIMITIVE_TRIALS  # main-prim's fixed trials (the thesis's 16)
 # what the primitive runs are (tools/replicate.mk's PROTOCOL), said at the top of the report
 PROTOCOLS = {
     "chain": "Primitives: protocol `chain` (the default): each primitive run of the thesis's "
@@ -144,10 +145,10 @@ def section_chain(out):
         die("%s: no chain-s*/fitness.csv (expected the chain runs of --protocol chain)" % out)
     for path in paths:
         last = read_rows(path)[-1]
-        fixed = sum(int(last["best_t%d" % k]) for k in range(16))
+        fixed = sum(int(last["best_t%d" % k]) for k in range(NFIXED))
         chained = [int(v) for k, v in last.items() if re.fullmatch(r"best_c\d+", k)]
-        lines.append("| %d | %d | %d/16 | %d/%d |" % (run_seed(path), int(last["generation"]) + 1,
-                                                    fixed, sum(chained), len(chained)))
+        lines.append("| %d | %d | %d/%d | %d/%d |" % (run_seed(path), int(last["generation"]) + 1,
+                                                    fixed, NFIXED, sum(chained), len(chained)))
     return lines + [""]
 
 
