@@ -122,6 +122,38 @@ if grep -q "tools/fig_chain.py $tmp/f/chain-s1 $tmp/f/chain-s2 -o $tmp/f/figures
    grep -q "tools/fig_int_fitness.py" <<< "$out0" && ! grep -q fig_chain <<< "$out0"; then
   ok "PROTOCOL=chain: the chain stage's figure from the chain runs"
 else ko "PROTOCOL=chain figure"; fi
+# the study from primitive runs that exist (PRIM_RUNS, CHAIN_RUNS: here OUT a's, as a user gives
+# the committed ones): nothing is evolved or written for them, RUNS counts the integrated runs,
+# and the report names them and reads their fitness.csv
+given="PRIM_RUNS='$tmp/a/prims-s1 $tmp/a/prims-s2/' CHAIN_RUNS='$tmp/a/chain-s1 $tmp/a/chain-s2'"
+sums() { (cd "$tmp/a" && find prims-s1 prims-s2 chain-s1 chain-s2 -type f | sort | xargs md5sum); }
+sums > "$tmp/g.before"
+if eval "$REP OUT='$tmp/g' RUNS=1 $given" > "$tmp/g.out" 2>&1 &&
+   [ -s "$tmp/g/report.md" ] && [ -s "$tmp/g/int-ni-s1/population.genome" ] &&
+   [ ! -e "$tmp/g/int-ni-s2" ] && [ -z "$(ls -d "$tmp/g/prims-s"* "$tmp/g/chain-s"* 2> /dev/null)" ] &&
+   grep -qx "populations = $tmp/a/chain-s1/population.genome,$tmp/a/chain-s2/population.genome" \
+     "$tmp/g/int-stct-s1/config.ini" &&
+   [ "$(cut -d, -f9 "$tmp/g/posteval/integration/summary.csv" | sort -u | tr '\n' ' ')" = "chain-s1 chain-s2 run_label " ] &&
+   sums | cmp -s - "$tmp/g.before"; then
+  ok "PRIM_RUNS, CHAIN_RUNS: the integrated runs from the given runs, which stay untouched"
+else ko "PRIM_RUNS, CHAIN_RUNS" "$(tail -5 "$tmp/g.out")"; fi
+r="$tmp/g/report.md"
+if grep -qF "The primitive runs were given (\`PRIM_RUNS\`, \`CHAIN_RUNS\`), not run here: \`$tmp/a/prims-s1\`" "$r" &&
+   [ "$(grep -cE '^\| [12] \| 2 \| [0-9]+/16 \| [0-2]/2 \|$' "$r")" = 2 ] &&
+   [ "$(grep -cE '^\| [12] \| (-|[0-9]+) \| (-|[0-9]+) \| (-|[0-9]+) \| 2 \| [0-9]+/16 \|$' "$r")" = 2 ] &&
+   [ "$(grep -cE '^\| (ST-CT|ST|CT|NI) \| 1 \| 2 \|' "$r")" = 4 ]; then
+  ok "PRIM_RUNS: the report names the given runs and reads their primitive and chain stages"
+else ko "PRIM_RUNS report" "$(sed -n 1,40p "$r")"; fi
+e1=$($REP -n OUT="$tmp/g" CHAIN_RUNS="$tmp/a/chain-s1" 2>&1)
+e2=$($REP -n OUT="$tmp/g" PRIM_RUNS="$tmp/a/prims-s1 $tmp/a/prims-s2" CHAIN_RUNS="$tmp/a/chain-s1" 2>&1)
+e3=$($REP -n OUT="$tmp/g" PROTOCOL=thesis PRIM_RUNS="$tmp/a/prims-s1" CHAIN_RUNS="$tmp/a/chain-s1" 2>&1)
+e4=$($REP -n OUT="$tmp/g" PRIM_RUNS="$tmp/a/prims-s1" CHAIN_RUNS="$tmp/nowhere" 2>&1)
+if grep -q "CHAIN_RUNS without PRIM_RUNS" <<< "$e1" &&
+   grep -q "PRIM_RUNS has 2 and CHAIN_RUNS 1 directories: expected one chain run per primitive run" <<< "$e2" &&
+   grep -q "CHAIN_RUNS with PROTOCOL=thesis, which has no chain stage" <<< "$e3" &&
+   grep -q "no such file: $tmp/nowhere/fitness.csv $tmp/nowhere/population.genome" <<< "$e4"; then
+  ok "PRIM_RUNS, CHAIN_RUNS: a missing or unpaired run is refused"
+else ko "PRIM_RUNS refusals" "$e1 $e2 $e3 $e4"; fi
 $REP OUT="$tmp/c" PROTOCOL=mine > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "PROTOCOL=mine: expected chain or thesis" "$tmp/e"; then
   ok "an unknown protocol is refused"; else ko "unknown protocol" "$(cat "$tmp/e")"; fi
@@ -181,6 +213,20 @@ if price --protocol thesis --threads 2 > "$tmp/q.out" 2>&1 &&
    [ ! -e "$tmp/q/cost/costs.csv" ]; then
   ok "cost: the arithmetic (costs given, numbers by hand; 2 and 64 threads, PROTOCOL=chain)"
 else ko "cost arithmetic" "$(cat "$tmp/q.out" "$tmp/q64.out" "$tmp/qc.out" 2> /dev/null)"; fi
+# given primitive runs (PRIM_RUNS, 4 of them) and RUNS=5 integrated runs: no prims or chain rows;
+# by hand: the integration test 4 x 10 x 40 = 1,600 trials; each condition 5 x 100 x 100 x 0.6 s
+# = 8.3 core-hours; robustness 4 x 5 x 40 = 800 trials; generalisation 6 x 5 x 1960 = 58,800
+# trials x 0.1 s = 1.6; total 4 x 8.33 + 0.022 + 0.022 + 1.63 = 35.0
+if price --protocol chain --threads 2 --given-runs 4 --runs 5 > "$tmp/qg.out" 2>&1 &&
+   ! grep -qE "^(prims|chain):" "$tmp/qg.out" &&
+   grep -qE "^integration test +1 +0.05 +- +1,600 " "$tmp/qg.out" &&
+   grep -qE "^integrated NI +5 +0.6 +100 +50,000 +8.3 +4.2 " "$tmp/qg.out" &&
+   grep -qE "^robustness +4 +0.1 +- +800 " "$tmp/qg.out" &&
+   grep -qE "^generalisation +6 +0.1 +- +58,800 +1.6 " "$tmp/qg.out" &&
+   grep -qx "Expected: 35.0 core-hours, 17.5 hours on 2 threads; at most 35.0 core-hours, 17.5 hours." "$tmp/qg.out" &&
+   grep -q "^prims, chain: given (PRIM_RUNS, CHAIN_RUNS, 4 runs), nothing to run.$" "$tmp/qg.out"; then
+  ok "cost: given primitive runs priced as nothing to run, the tests on their count (by hand)"
+else ko "cost, given runs" "$(cat "$tmp/qg.out")"; fi
 # refused: a population that is not there, arguments it cannot price, a bad RUNS
 $COST cost OUT="$tmp/p" COST_PRIM_POP=nowhere.genome > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "nowhere.genome (COST_PRIM_POP): no such file" "$tmp/e"; then

@@ -82,8 +82,37 @@ POSTEVAL := ./apps/posteval
 STATS := ./apps/stats
 THREADS_ARG := $(if $(filter-out 0,$(THREADS)),--threads $(THREADS))
 
-PRIM_POPS := $(SEEDS:%=$(OUT)/prims-s%/population.genome)
-CHAIN_POPS := $(SEEDS:%=$(OUT)/chain-s%/population.genome)
+# The study from primitive runs that exist already (the committed ones, another machine's):
+# PRIM_RUNS lists their directories (each with fitness.csv and population.genome) and, with
+# PROTOCOL=chain, CHAIN_RUNS the chain stages that continued them, in the same order. The prims
+# and chain steps then run nothing (nothing is written into those directories), and RUNS counts
+# the integrated runs of each condition only, e.g. (README.md, "Replicating the study"):
+#   make replicate RUNS=5 PRIM_RUNS='data/evolved/prims_s1 data/evolved/prims_s2' \
+#     CHAIN_RUNS='data/evolved/chain_s1 data/evolved/chain_s2'
+PRIM_RUNS ?=
+CHAIN_RUNS ?=
+GIVEN_PRIMS := $(patsubst %/,%,$(strip $(PRIM_RUNS)))
+GIVEN_CHAINS := $(patsubst %/,%,$(strip $(CHAIN_RUNS)))
+ifneq ($(GIVEN_PRIMS)$(GIVEN_CHAINS),)
+ifeq ($(GIVEN_PRIMS),)
+$(error CHAIN_RUNS without PRIM_RUNS: expected the primitive runs the chain runs continued, in the same order)
+endif
+ifeq ($(PROTOCOL),chain)
+ifneq ($(words $(GIVEN_PRIMS)),$(words $(GIVEN_CHAINS)))
+$(error PROTOCOL=chain: PRIM_RUNS has $(words $(GIVEN_PRIMS)) and CHAIN_RUNS $(words $(GIVEN_CHAINS)) directories: expected one chain run per primitive run)
+endif
+else ifneq ($(GIVEN_CHAINS),)
+$(error CHAIN_RUNS with PROTOCOL=thesis, which has no chain stage)
+endif
+GIVEN_FILES := $(foreach d,$(GIVEN_PRIMS) $(GIVEN_CHAINS),$(d)/fitness.csv $(d)/population.genome)
+GIVEN_MISSING := $(filter-out $(wildcard $(GIVEN_FILES)),$(GIVEN_FILES))
+ifneq ($(GIVEN_MISSING),)
+$(error PRIM_RUNS / CHAIN_RUNS: no such file: $(GIVEN_MISSING) (expected a completed run's directory))
+endif
+endif
+
+PRIM_POPS := $(if $(GIVEN_PRIMS),$(GIVEN_PRIMS:%=%/population.genome),$(SEEDS:%=$(OUT)/prims-s%/population.genome))
+CHAIN_POPS := $(if $(GIVEN_CHAINS),$(GIVEN_CHAINS:%=%/population.genome),$(SEEDS:%=$(OUT)/chain-s%/population.genome))
 # the primitive runs the integration test and the integrated stage take
 PRIMITIVES := $(if $(filter chain,$(PROTOCOL)),$(CHAIN_POPS),$(PRIM_POPS))
 INT_POPS := $(foreach c,$(CONDS),$(SEEDS:%=$(OUT)/int-$(c)-s%/population.genome))
@@ -140,6 +169,7 @@ cost:
 	  --prim-pop=$(COST_PRIM_POP) --chain-pop=$(COST_CHAIN_POP) --int-pop=$(COST_INT_POP) \
 	  --prim-args='$(PRIM_ARGS)' --chain-args='$(CHAIN_ARGS)' --int-args='$(INT_ARGS)' \
 	  --integ-args='$(INTEG_ARGS)' --rob-args='$(ROB_ARGS)' --gen-args='$(GEN_ARGS)' \
+	  $(if $(GIVEN_PRIMS),--given-runs=$(words $(GIVEN_PRIMS))) \
 	  $(if $(filter-out 0 no,$(REMEASURE)),--remeasure)
 
 # ---- evolution: --resume continues a killed run to the identical files (or starts it). It
@@ -157,6 +187,7 @@ $(OUT)/chain-s%/population.genome: $(OUT)/prims-s%/population.genome FORCE
 
 # every integrated run starts from the same assembled genotypes: the top 10 of each primitive run
 $(OUT)/int-%/population.genome: $(PRIMITIVES) FORCE
+	@mkdir -p $(OUT)
 	$(EVOLVE) configs/integrated_$(word 1,$(subst -s, ,$*)).cfg --seed $(lastword $(subst -s, ,$*)) \
 	  --out $(@D) --resume $(THREADS_ARG) $(INT_ARGS) \
 	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIMITIVES))) >> $(@D).log
@@ -231,4 +262,5 @@ $(OUT)/figures/.done: $(PRIMITIVES) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selfta
 	touch $@
 
 $(REPORT): $(STATS_OUT) $(OUT)/figures/.done
-	$(PYTHON) tools/replicate_report.py $(OUT) --preset $(PRESET) --runs $(RUNS) --protocol $(PROTOCOL) -o $@
+	$(PYTHON) tools/replicate_report.py $(OUT) --preset $(PRESET) --runs $(RUNS) --protocol $(PROTOCOL) \
+	  $(if $(GIVEN_PRIMS),--prim-runs '$(GIVEN_PRIMS)' $(if $(GIVEN_CHAINS),--chain-runs '$(GIVEN_CHAINS)')) -o $@

@@ -196,16 +196,13 @@ def evolution(name, runs, c, gens_arg):
     return Step(name, runs, c.seconds, cap, runs * c.plan["population"] * cap, c.plan["population"])
 
 
-def plan_steps(a, meter):
-    """the steps, the costs measured (name, seconds or None, what), notes on the generations"""
+def plan_primitive_steps(a, meter, pop, primitives, steps, costs, notes):
+    """the steps that evolve the primitive runs (prims and, with PROTOCOL=chain, chain)"""
     n = a.sample
     thesis = json.load(open(THESIS))["primitive_runs"]
     simple_med = thesis["simple_prim"]["median"]
     main_med = thesis["total"]["median"] - simple_med
-    steps, costs, notes = [], [], []
-
     prim_gens, prim_sets = step_args("PRIM_ARGS", a.prim_args)
-    pop = need_file(a.prim_pop, "COST_PRIM_POP")
     base = ["configs/prims.cfg", "--population", pop]
     simple = meter.cost("simple-prim", base + ["--stage", "simple-prim"] + prim_sets, 25 * n)
     main = meter.cost("main-prim", base + ["--stage", "main-prim", "--spread"] + prim_sets, n)
@@ -223,10 +220,8 @@ def plan_steps(a, meter):
                      if cap < simple_med + main_med else "", cap,
                      "PRIM_ARGS' --generations" if prim_gens else "ga.max_generations"))
 
-    primitives = pop
     if a.protocol == "chain":
         chain_gens, chain_sets = step_args("CHAIN_ARGS", a.chain_args)
-        primitives = need_file(a.chain_pop, "COST_CHAIN_POP")
         # two phases: generations below postures.vary_replace_generations (the drawn starts in
         # place of open's and grasp's) priced at generation 0, the rest (the varied trials
         # too, the dearer phase) at the run's last generation
@@ -254,12 +249,28 @@ def plan_steps(a, meter):
                          if replace and cap > replace else "", cap,
                          "CHAIN_ARGS' --generations" if chain_gens else "ga.max_generations"))
 
+
+def plan_steps(a, meter):
+    """the steps, the costs measured (name, seconds or None, what), notes on the generations"""
+    n = a.sample
+    steps, costs, notes = [], [], []
+
+    pop = need_file(a.prim_pop, "COST_PRIM_POP")
+    primitives = pop if a.protocol == "thesis" else need_file(a.chain_pop, "COST_CHAIN_POP")
+    if a.given_runs:
+        notes.append("prims%s: given (PRIM_RUNS%s, %s), nothing to run." % (
+            ", chain" if a.protocol == "chain" else "",
+            ", CHAIN_RUNS" if a.protocol == "chain" else "", plural(a.given_runs, "run")))
+    else:
+        plan_primitive_steps(a, meter, pop, primitives, steps, costs, notes)
+    primitive_runs = a.given_runs or a.runs
+
     _, integ_sets = step_args("INTEG_ARGS", a.integ_args)
     integ = meter.cost("integration", ["configs/prims.cfg", "--population", primitives,
                                        "--posteval", "integration"] + integ_sets, 2 * n)
     costs.append(("integration-test trial", integ, primitives))
     steps.append(Step("integration test", 1, integ.seconds, None,
-                      a.runs * integ.plan["individuals"] * integ.plan["trials"]))
+                      primitive_runs * integ.plan["individuals"] * integ.plan["trials"]))
 
     int_gens, int_sets = step_args("INT_ARGS", a.int_args)
     _, rob_sets = step_args("ROB_ARGS", a.rob_args)
@@ -361,6 +372,8 @@ def main(argv):
     ap.add_argument("--protocol", required=True, choices=["thesis", "chain"])
     ap.add_argument("--runs", required=True)
     ap.add_argument("--threads", default="0")
+    ap.add_argument("--given-runs", default="0",
+                    help="primitive runs given (PRIM_RUNS): the prims and chain steps run nothing")
     ap.add_argument("--out", required=True)
     for k in ("prim", "chain", "int", "integ", "rob", "gen"):
         ap.add_argument("--%s-args" % k, default="")
@@ -373,6 +386,7 @@ def main(argv):
     ap.add_argument("--assume", action="append", metavar="KIND=SECONDS")
     a = ap.parse_args(argv)
     for name, var, least in (("runs", "RUNS", 1), ("threads", "THREADS", 0),
+                             ("given_runs", "PRIM_RUNS' count", 0),
                              ("sample", "COST_SAMPLE", 1)):
         v = getattr(a, name)
         if not v.isdigit() or int(v) < least:

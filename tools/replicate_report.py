@@ -2,9 +2,11 @@
 """replicate_report.py: report.md of a replication (tools/replicate.mk), each of the thesis's
 numbers (data/thesis/results.json) beside ours.
 
-    replicate_report.py OUT [--preset NAME] [--runs N] [--protocol chain|thesis] [-o report.md]
+    replicate_report.py OUT [--preset NAME] [--runs N] [--protocol chain|thesis]
+                        [--prim-runs 'DIR ...' [--chain-runs 'DIR ...']] [-o report.md]
 
-Reads OUT/prims-s*/fitness.csv (and OUT/chain-s*/fitness.csv with --protocol chain),
+Reads OUT/prims-s*/fitness.csv (and OUT/chain-s*/fitness.csv with --protocol chain), or the
+fitness.csv of the given runs' directories instead,
 OUT/int-<cond>-s*/fitness.csv, OUT/summary/*.csv,
 OUT/stats/*.txt (./apps/stats's tables) and links OUT/figures/*.png. Written atomically."""
 import argparse
@@ -84,7 +86,8 @@ def read_rows(path):
 
 
 def run_seed(path):
-    m = re.search(r"-s(\d+)$", os.path.basename(os.path.dirname(path)))
+    # OUT/prims-s3/fitness.csv, or a given run's directory such as data/evolved/chain_s3
+    m = re.search(r"[-_]s(\d+)$", os.path.basename(os.path.dirname(path)))
     return int(m.group(1)) if m else -1
 
 
@@ -110,8 +113,16 @@ def prim_run(path):
             "best_successes": int(last["best_successes"])}
 
 
-def section_prims(out, th):
-    runs = [prim_run(p) for p in sorted(glob.glob(os.path.join(out, "prims-s*", "fitness.csv")))]
+def run_files(out, pattern, given):
+    """the fitness.csv of each run: the given directories (PRIM_RUNS, CHAIN_RUNS) in their
+    order, else OUT's runs of the pattern"""
+    if given:
+        return [os.path.join(d, "fitness.csv") for d in given]
+    return sorted(glob.glob(os.path.join(out, pattern, "fitness.csv")))
+
+
+def section_prims(out, th, given):
+    runs = [prim_run(p) for p in run_files(out, "prims-s*", given)]
     t = th["primitive_runs"]
     lines = ["## Primitive stages (thesis §3.1)", "",
              "| run (seed) | simple-prim complete at | main-prim complete at | main-prim generations | "
@@ -134,13 +145,13 @@ def section_prims(out, th):
     return lines
 
 
-def section_chain(out):
+def section_chain(out, given):
     """the chain stage (PROTOCOL=chain): per run, its generations and what its final best solves
     of the thesis's 16 fixed trials and of its chained trials"""
     lines = ["### The chain stage (SPEC §12; not the thesis's)", "",
              "| run (seed) | generations run | final best: fixed trials solved | "
              "final best: chained trials solved |", "|---|---|---|---|"]
-    paths = sorted(glob.glob(os.path.join(out, "chain-s*", "fitness.csv")))
+    paths = run_files(out, "chain-s*", given)
     if not paths:
         die("%s: no chain-s*/fitness.csv (expected the chain runs of --protocol chain)" % out)
     for path in paths:
@@ -258,23 +269,41 @@ def main():
     ap.add_argument("--preset", default="full")
     ap.add_argument("--runs", type=int, default=0)
     ap.add_argument("--protocol", choices=sorted(PROTOCOLS), default="chain")
+    ap.add_argument("--prim-runs", default="", metavar="'DIR ...'",
+                    help="the primitive runs taken as given (replicate.mk's PRIM_RUNS)")
+    ap.add_argument("--chain-runs", default="", metavar="'DIR ...'",
+                    help="their chain stages (CHAIN_RUNS)")
     ap.add_argument("-o", dest="report", default=None)
     a = ap.parse_args()
     if not os.path.isdir(a.out):
         die("%s: not a directory" % a.out)
+    given_prims, given_chains = a.prim_runs.split(), a.chain_runs.split()
+    if given_chains and a.protocol != "chain":
+        die("--chain-runs with --protocol %s, which has no chain stage" % a.protocol)
+    if given_chains and len(given_chains) != len(given_prims):
+        die("--chain-runs: %d directories for %d primitive runs (--prim-runs): expected one each"
+            % (len(given_chains), len(given_prims)))
+    for d in given_prims + given_chains:
+        if not os.path.isfile(os.path.join(d, "fitness.csv")):
+            die("%s: no fitness.csv (expected a run's directory)" % d)
     with open(THESIS) as f:
         th = json.load(f)
     lines = ["# Replication of the study", "",
              "Preset `%s`, %d runs per stage and condition, in `%s` (tools/replicate.mk). The "
              "thesis's numbers come from `data/thesis/results.json`." % (a.preset, a.runs, a.out), "",
              PROTOCOLS[a.protocol], ""]
+    if given_prims:
+        lines += ["The primitive runs were given (`PRIM_RUNS`%s), not run here: %s. `%d runs` "
+                  "counts the integrated runs of each condition." % (
+                      ", `CHAIN_RUNS`" if given_chains else "",
+                      ", ".join("`%s`" % d for d in given_prims + given_chains), a.runs), ""]
     if a.preset != "full":
         lines += ["**A quick look, not a replication:** the `%s` preset caps the generations and "
                   "shrinks the post-evaluations, so its numbers are not comparable with the "
                   "thesis's." % a.preset, ""]
-    lines += section_prims(a.out, th)
+    lines += section_prims(a.out, th, given_prims)
     if a.protocol == "chain":
-        lines += section_chain(a.out)
+        lines += section_chain(a.out, given_chains)
     lines += section_integration(a.out, th) + section_integrated(a.out)
     lines += section_test(a.out, th, "robustness", "Robustness test (thesis §3.2, Fig. 3.4)",
                           "table_3_1.txt", ["fig3_4"], "3.1", "A.1", th["conditions"])
