@@ -42,6 +42,42 @@ if grep -qF "| ST-CT | - | 24 | 9.5** | 8.5** |" "$r" && grep -qF "| 581 (426, 7
   ok "report.md: the thesis's Table 3.1 and quartiles, our 8 integrated runs of 2 generations"
 else ko "report.md content"; fi
 
+# the thesis's counts of §3.2 (learned, all autonomous, first generation): on a copy whose
+# integrated fitness.csv and robustness summary are set by hand. PRESET=tiny runs 4 trials, so
+# ST's autonomous bonus is at most 4 trials x 2 bonuses x 10 = 80 and ST-CT's (2 self-talk
+# trials) 40. ST: s1 80 in both generations (all autonomous, first 0), s2 80 in generation 0
+# only (first 0, not at the end), robustness 3 and 0 successes: learned 1 of 2; ST-CT: s1 40 in
+# generation 1 (first 1, all autonomous), s2 39.9 (never), robustness 0 and 0
+cp -r "$tmp/a" "$tmp/h"
+python3 - "$tmp/h" << 'PYEOF'
+import csv, sys
+out = sys.argv[1]
+def setcol(path, col, values):
+    rows = list(csv.DictReader(open(path)))
+    for r, v in zip(rows, values):
+        r[col] = v
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()), lineterminator="\n")
+        w.writeheader(); w.writerows(rows)
+setcol(out + "/int-st-s1/fitness.csv", "best_bonus_auto", ["80", "80"])
+setcol(out + "/int-st-s2/fitness.csv", "best_bonus_auto", ["80", "0"])
+setcol(out + "/int-stct-s1/fitness.csv", "best_bonus_auto", ["0", "40"])
+setcol(out + "/int-stct-s2/fitness.csv", "best_bonus_auto", ["0", "39.9"])
+path = out + "/summary/robustness.csv"
+rows = list(csv.DictReader(open(path)))
+for r in rows:
+    r["successes"] = {"int-st-s1": "3"}.get(r["run_label"].rstrip("/"), "0")
+with open(path, "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(rows[0].keys()), lineterminator="\n")
+    w.writeheader(); w.writerows(rows)
+PYEOF
+if python3 tools/replicate_report.py "$tmp/h" --preset tiny --runs 2 -o "$tmp/h.md" &&
+   grep -qxF "| ST | 2 | 8 | 1 of 2 tested | 7 | 1 | 3-40 | 0 (0-0), 2 runs |" "$tmp/h.md" &&
+   grep -qxF "| ST-CT | 2 | 9 | 0 of 2 tested | 9 | 1 | - | 1 (1-1), 1 runs |" "$tmp/h.md" &&
+   grep -qxF "| NI | 2 | 5 | 0 of 2 tested | 0 | 0 | - | - |" "$tmp/h.md"; then
+  ok "report.md: the thesis's counts of 3.2 beside ours (by hand)"
+else ko "report.md, the counts of 3.2" "$(grep -A8 'as the thesis counts' "$tmp/h.md")"; fi
+
 # killed while its integrated runs evolve, then started again: the same files
 setsid $REP OUT="$tmp/b" > "$tmp/b.out" 2>&1 &
 pid=$!

@@ -222,6 +222,58 @@ def section_integrated(out):
     return lines + [""]
 
 
+def int_run_counts(run_dir, robustness):
+    """one integrated run as the thesis counts it (§3.2.1-3.2.4): whether its best succeeds in
+    the robustness test at all (None: not tested), whether its last generation's best earns the
+    whole autonomous bonus (every trial without the caretaker's words a success: eq. 2.14's two
+    bonuses each), and the first generation whose best did"""
+    def key(section, name, default, conv):
+        try:
+            return runconfig.value(run_dir, section, name, default, conv)
+        except ValueError as e:
+            die(str(e))
+    bonus = key("fitness", "bonus", 10.0, float)
+    trials = key("integrated", "trials", 8, int)
+    words = [key("integrated", "words_" + k, "caretaker", str) for k in ("even", "odd")]
+    auto_max = 2 * bonus * sum(1 for i in range(trials) if words[i % 2] != "caretaker")
+    rows = read_rows(os.path.join(run_dir, "fitness.csv"))
+    full = [int(r["generation"]) for r in rows
+            if auto_max > 0 and float(r["best_bonus_auto"]) >= auto_max - 1e-9]
+    rob = robustness.get(os.path.basename(run_dir))
+    return {"learned": None if rob is None else rob > 0,
+            "all_auto": bool(full) and full[-1] == int(rows[-1]["generation"]),
+            "first_all": full[0] if full else None}
+
+
+def section_integrated_counts(out, th):
+    """the thesis's counts of §3.2.1-3.2.4 per condition beside ours"""
+    t = th["integrated_runs"]
+    s = summary_by(out, "robustness") or {}
+    lines = ["### The runs as the thesis counts them (§3.2.1-3.2.4)", "",
+             "Learned: the run's best succeeds autonomously in at least one trial (ours: of the "
+             "robustness test; the thesis's runs above 0 in Table A.1). All autonomous: its last "
+             "generation's best earns the whole bonus of every trial without the caretaker's "
+             "words. First generation: the first whose best did.", "",
+             "| condition | runs | learned: thesis (of 10) | ours | all autonomous: thesis | ours "
+             "| first generation all autonomous: thesis | ours (median, range) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for k, name in CONDS:
+        rob = {x[3]["run_label"]: int(x[3]["successes"]) for x in s.get(name, [])}
+        runs = [int_run_counts(os.path.dirname(p), rob)
+                for p in sorted(glob.glob(os.path.join(out, "int-%s-s*" % k, "fitness.csv")))]
+        learned = [r["learned"] for r in runs if r["learned"] is not None]
+        first = [r["first_all"] for r in runs if r["first_all"] is not None]
+        g = t["generations_to_all"][name]
+        lines.append("| %s | %d | %d | %s | %d | %d | %s | %s |" % (
+            name, len(runs), t["learned"][name],
+            "%d of %d tested" % (sum(learned), len(learned)) if learned else "-",
+            t["all_autonomous"][name], sum(1 for r in runs if r["all_auto"]),
+            "%d-%d" % tuple(g) if g else "-",
+            "%s (%d-%d), %d runs" % (fmt(five(first)[0]), min(first), max(first), len(first))
+            if first else "-"))
+    return lines + [""]
+
+
 def per_run_table(s, th_tab, conds):
     lines = ["| condition | thesis: runs 0-9 (median) | ours: runs (median) |", "|---|---|---|"]
     for c in conds:
@@ -305,6 +357,7 @@ def main():
     if a.protocol == "chain":
         lines += section_chain(a.out, given_chains)
     lines += section_integration(a.out, th) + section_integrated(a.out)
+    lines += section_integrated_counts(a.out, th)
     lines += section_test(a.out, th, "robustness", "Robustness test (thesis §3.2, Fig. 3.4)",
                           "table_3_1.txt", ["fig3_4"], "3.1", "A.1", th["conditions"])
     lines += section_test(a.out, th, "generalisation", "Generalisation test (thesis §3.2.5)",
