@@ -107,6 +107,15 @@ done
 grep -q "is complete" "$tmp/done.log" && ok "resuming a finished run says so" || ko "finished run" "$(cat "$tmp/done.log")"
 "$EV" $cfg --seed 11 --generations 2 --out "$tmp/fresh" --resume > "$tmp/fresh.log" 2>&1
 grep -q "no checkpoint in $tmp/fresh: starting fresh" "$tmp/fresh.log" && ok "--resume without a checkpoint starts fresh" || ko "fresh" "$(cat "$tmp/fresh.log")"
+# a finished run whose checkpoint was removed (as data/evolved/ keeps them): --resume refuses
+# to start it again over its files, which stay as they were
+mkdir -p "$tmp/fin" && cp "$tmp/t1/"{config.ini,fitness.csv,population.genome} "$tmp/fin/"
+sum0=$(cat "$tmp/fin/"* | md5sum)
+"$EV" $cfg --seed 11 --generations $G --out "$tmp/fin" --resume > "$tmp/fin.log" 2>&1
+if [ $? != 0 ] && grep -q "$tmp/fin/population.genome: a finished run's population and no checkpoint to resume from" "$tmp/fin.log" &&
+   [ "$(cat "$tmp/fin/"* | md5sum)" = "$sum0" ] && [ "$(ls "$tmp/fin" | wc -l)" = 3 ]; then
+  ok "--resume on a finished run without its checkpoint is refused, its files kept"
+else ko "finished run without checkpoint" "$(cat "$tmp/fin.log")"; fi
 if "$EV" $cfg --seed 12 --generations $G --out "$tmp/k" --resume > "$tmp/diff.log" 2>&1; then
   ko "resume with another config refused" "exit 0"
 else

@@ -614,6 +614,15 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   stCheckpoint ck;
   memset(&ck, 0, sizeof ck);
   const int have_ckpt = def->resume && file_size(R.path[P_CKPT]) >= 0;
+  /* a population and no checkpoint is a finished run whose checkpoint was removed (as the
+   * committed runs under data/evolved/): starting again would overwrite its results, and
+   * --resume is what scripts run over and over without looking */
+  if (def->resume && !have_ckpt && file_size(R.path[P_POP]) >= 0) {
+    st__errf(err, errsz, "%s: a finished run's population and no checkpoint to resume from "
+             "(--resume would start the run again over its files): remove them or choose another "
+             "--out to run it again", R.path[P_POP]);
+    return ST_ERR_IO;
+  }
   if (def->resume && !have_ckpt && def->progress)
     fprintf(def->progress, "evolve: no checkpoint in %s: starting fresh\n", def->out_dir);
   if (have_ckpt) st = read_resume(&R, &ck, err, errsz);
