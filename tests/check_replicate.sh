@@ -283,8 +283,11 @@ if [ $? != 0 ] && grep -q "PRESET=huge: expected full, small or tiny" "$tmp/e"; 
   ok "an unknown preset is refused"; else ko "unknown preset" "$(cat "$tmp/e")"; fi
 if ! $REP jobs STEP=everything > /dev/null 2> "$tmp/e" && grep -q "STEP=prims" "$tmp/e"; then
   ok "an unknown step is refused"; else ko "unknown step"; fi
-if [ "$($REP jobs STEP=integrated OUT=x | wc -l)" = 8 ]; then ok "jobs STEP=integrated lists 4 conditions x 2 runs"; else
-  ko "jobs STEP=integrated"; fi
+# seed by seed (a replication stopped part way has every condition): ST-CT, ST, CT, NI of seed 1 first
+jobs=$($REP jobs STEP=integrated OUT=x)
+if [ "$(wc -l <<< "$jobs")" = 8 ] && [ "$(sed -n 4,5p <<< "$jobs" | tr '\n' ' ')" = \
+  "x/int-ni-s1/population.genome x/int-stct-s2/population.genome " ]; then
+  ok "jobs STEP=integrated lists 4 conditions x 2 runs, seed by seed"; else ko "jobs STEP=integrated" "$jobs"; fi
 
 echo "$CHECK: $pass passed, $fail failed"
 [ $fail = 0 ]

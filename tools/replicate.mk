@@ -115,7 +115,9 @@ PRIM_POPS := $(if $(GIVEN_PRIMS),$(GIVEN_PRIMS:%=%/population.genome),$(SEEDS:%=
 CHAIN_POPS := $(if $(GIVEN_CHAINS),$(GIVEN_CHAINS:%=%/population.genome),$(SEEDS:%=$(OUT)/chain-s%/population.genome))
 # the primitive runs the integration test and the integrated stage take
 PRIMITIVES := $(if $(filter chain,$(PROTOCOL)),$(CHAIN_POPS),$(PRIM_POPS))
-INT_POPS := $(foreach c,$(CONDS),$(SEEDS:%=$(OUT)/int-$(c)-s%/population.genome))
+# seed by seed, the four conditions of each (make -j1 runs them in this order): a replication
+# stopped part way has every condition with as many seeds as it got to
+INT_POPS := $(foreach s,$(SEEDS),$(CONDS:%=$(OUT)/int-%-s$(s)/population.genome))
 POST_INTEG := $(OUT)/posteval/integration/summary.csv
 POST_ROB := $(CONDS:%=$(OUT)/posteval/robustness-%/summary.csv)
 POST_GEN := $(CONDS:%=$(OUT)/posteval/generalisation-%/summary.csv) \
