@@ -6,7 +6,7 @@ prints it first).
     replicate_cost.py --preset P --protocol thesis|chain --runs N --threads T --out OUT
         [--prim-args A] [--chain-args A] [--int-args A] [--integ-args A] [--rob-args A]
         [--gen-args A] [--prim-pop F] [--chain-pop F] [--int-pop F] [--sample N]
-        [--remeasure] [--eval-cost build/eval_cost] [--assume KIND=SECONDS]...
+        [--remeasure] [--eval-cost build/eval_cost] [--assume KIND=SECONDS]... [--given-runs N]
 
 Each kind of evaluation - an individual of simple-prim, main-prim, the chain stage, the
 integrated stage of each condition; a trial of each post-evaluation test and variant - is timed
@@ -16,7 +16,9 @@ trials, 25N simple-prim individuals), with the step's --set options. The means a
 OUT/cost/costs.csv, keyed by host, build (eval_cost's bytes: the library is linked in) and the
 measurement's arguments, so a second call measures nothing; --remeasure measures again.
 --assume KIND=SECONDS (KIND a pattern: 'integrated-*') takes a cost as given instead: the
-arithmetic's test (tests/check_replicate.sh). What each job runs (population, generations,
+arithmetic's test (tests/check_replicate.sh). --given-runs N: the replication takes N primitive
+runs as given (PRIM_RUNS), so the prims and chain steps cost nothing and the integration test
+runs on N runs. What each job runs (population, generations,
 trials) is eval_cost's `# plan:` line for the step's config and --set options.
 
 The model: a step's core-hours = its evaluations x CPU seconds each / 3600; evaluations = jobs x
