@@ -244,8 +244,8 @@ def plan_primitive_steps(a, meter, pop, primitives, steps, costs, notes):
         notes.append("chain: %sexpected and at most its cap, %d generations (%s): a chain run "
                      "ends earlier only when ga.success_genotypes genotypes of one generation "
                      "solve the 16 fixed and all chained trials (stage.chain_complete), an "
-                     "early exit that no run has taken so far (docs/PROTOCOL.md, 'The chain "
-                     "stage's budget')." % (
+                     "early exit that 1 of the 3 completed runs took (seed 2, at 123; "
+                     "docs/PROTOCOL.md, 'The chain stage's budget')." % (
                          "the first %d (postures.vary_replace_generations) priced at generation "
                          "0's trials, the rest at the last generation's; " % replace
                          if replace and cap > replace else "", cap,
