@@ -91,6 +91,22 @@ wait $pid 2> /dev/null
 if [ -e "$tmp/b/int-stct-s1/checkpoint" ] && [ ! -e "$tmp/b/report.md" ]; then
   ok "killed during the integrated runs"
 else ko "killed during the integrated runs" "report exists or no integrated checkpoint"; fi
+# through a snapshot (target snapshot: checkpoints first) and a restore into a fresh OUT: what
+# resumes below is the restored copy, which must give the uninterrupted replication's files
+nck=$(find "$tmp/b" -name checkpoint | wc -l)
+if $REP snapshot OUT="$tmp/b" SNAPSHOT="$tmp/bsnap" > "$tmp/bs.out" 2>&1 && mv "$tmp/b" "$tmp/b.orig" &&
+   $REP restore OUT="$tmp/b" SNAPSHOT="$tmp/bsnap" >> "$tmp/bs.out" 2>&1 &&
+   diff -r -x '*.tmp' "$tmp/b.orig" "$tmp/b" > /dev/null && [ "$nck" -ge 5 ] &&
+   grep -q "checkpoints" "$tmp/bs.out" && [ -z "$(find "$tmp/bsnap" -name '*.tmp')" ]; then
+  ok "snapshot and restore: the killed replication copied whole ($nck checkpoints), no temporary file"
+else ko "snapshot and restore" "$(cat "$tmp/bs.out")"; fi
+$REP restore OUT="$tmp/b" SNAPSHOT="$tmp/bsnap" > /dev/null 2> "$tmp/e"
+e1=$?
+$REP snapshot OUT="$tmp/b" > /dev/null 2> "$tmp/e2"
+if [ $e1 != 0 ] && grep -q "restore: $tmp/b exists (restoring over it would overwrite newer files)" "$tmp/e" &&
+   grep -q "snapshot: SNAPSHOT=DIR expected" "$tmp/e2"; then
+  ok "restore over an existing OUT, or without SNAPSHOT, is refused"
+else ko "snapshot refusals" "$(cat "$tmp/e" "$tmp/e2")"; fi
 if $REP OUT="$tmp/b" > "$tmp/b2.out" 2>&1; then ok "started again, it completes"; else
   ko "started again, it completes" "$(tail -5 "$tmp/b2.out")"; fi
 # files name their directory (config.ini's integrated.populations, report.md): compared with it

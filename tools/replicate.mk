@@ -6,6 +6,7 @@
 #   make replicate [PRESET=small] [RUNS=N] [OUT=DIR] [THREADS=N]      (top-level Makefile)
 #   make -f tools/replicate.mk [target] [the same variables]
 #   make -f tools/replicate.mk cost [the same variables] [REMEASURE=1]  what it will cost
+#   make -f tools/replicate.mk snapshot|restore OUT=DIR SNAPSHOT=DIR    copy it while it runs
 #
 # Steps and their files (under OUT):
 #   prims       prims-s<N>/population.genome       configs/prims.cfg, seeds 1..RUNS
@@ -130,7 +131,7 @@ STATS_OUT := $(OUT)/stats/table_3_1.txt $(OUT)/stats/table_3_2.txt $(OUT)/stats/
 REPORT := $(OUT)/report.md
 
 .PHONY: FORCE all prims chain integration integrated robustness generalisation stats figures report jobs \
-  cost
+  cost snapshot restore
 .DELETE_ON_ERROR:
 # a step's files stay when a later step fails: they are results
 .SECONDARY:
@@ -173,6 +174,21 @@ cost:
 	  --integ-args='$(INTEG_ARGS)' --rob-args='$(ROB_ARGS)' --gen-args='$(GEN_ARGS)' \
 	  $(if $(GIVEN_PRIMS),--given-runs=$(words $(GIVEN_PRIMS))) \
 	  $(if $(filter-out 0 no,$(REMEASURE)),--remeasure)
+
+# ---- snapshots while it runs (storage that does not last, a repository; tools/snapshot.sh):
+# snapshot copies OUT to SNAPSHOT, each run's checkpoint first, so the copy is a consistent
+# resume point; restore copies SNAPSHOT back into an OUT that does not exist yet (nothing newer
+# is overwritten), where the same make command resumes every job to the same files. Files name
+# OUT (config.ini's integrated.populations), so restore to the OUT the snapshot was taken of.
+SNAPSHOT ?=
+NEED_SNAPSHOT = @test -n "$(SNAPSHOT)" || { echo "$@: SNAPSHOT=DIR expected (where the snapshot goes or comes from)" >&2; exit 2; }
+snapshot:
+	$(NEED_SNAPSHOT)
+	@sh tools/snapshot.sh "$(OUT)" "$(SNAPSHOT)"
+restore:
+	$(NEED_SNAPSHOT)
+	@test ! -e "$(OUT)" || { echo "restore: $(OUT) exists (restoring over it would overwrite newer files): expected a path that does not exist" >&2; exit 2; }
+	@sh tools/snapshot.sh "$(SNAPSHOT)" "$(OUT)"
 
 # ---- evolution: --resume continues a killed run to the identical files (or starts it). It
 # runs every time (FORCE): evolve writes population.genome before its last checkpoint, so a run
