@@ -91,12 +91,17 @@ def run_seed(path):
     return int(m.group(1)) if m else -1
 
 
-def success_genotypes(run_dir):
-    """ga.success_genotypes of the run's config.ini (5 when absent)"""
+def run_value(run_dir, section, key, default, conv):
+    """section.key of the run's config.ini (runconfig.value), a bad value refused with FILE:LINE"""
     try:
-        return runconfig.value(run_dir, "ga", "success_genotypes", 5, int)
+        return runconfig.value(run_dir, section, key, default, conv)
     except ValueError as e:
         die(str(e))
+
+
+def success_genotypes(run_dir):
+    """ga.success_genotypes of the run's config.ini (5 when absent)"""
+    return run_value(run_dir, "ga", "success_genotypes", 5, int)
 
 
 def prim_run(path):
@@ -227,14 +232,9 @@ def int_run_counts(run_dir, robustness):
     the robustness test at all (None: not tested), whether its last generation's best earns the
     whole autonomous bonus (every trial without the caretaker's words a success: eq. 2.14's two
     bonuses each), and the first generation whose best did"""
-    def key(section, name, default, conv):
-        try:
-            return runconfig.value(run_dir, section, name, default, conv)
-        except ValueError as e:
-            die(str(e))
-    bonus = key("fitness", "bonus", 10.0, float)
-    trials = key("integrated", "trials", 8, int)
-    words = [key("integrated", "words_" + k, "caretaker", str) for k in ("even", "odd")]
+    bonus = run_value(run_dir, "fitness", "bonus", 10.0, float)
+    trials = run_value(run_dir, "integrated", "trials", 8, int)
+    words = [run_value(run_dir, "integrated", "words_" + k, "caretaker", str) for k in ("even", "odd")]
     auto_max = 2 * bonus * sum(1 for i in range(trials) if words[i % 2] != "caretaker")
     rows = read_rows(os.path.join(run_dir, "fitness.csv"))
     full = [int(r["generation"]) for r in rows

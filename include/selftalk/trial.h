@@ -256,6 +256,10 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
  * chained ones the integration test's). */
 int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e);
 
+/* The fixed trials an evaluation ran (the thesis's 16 in main-prim): its trials less the
+ * hand-over, varied and chained ones, which the chain stage adds beside them. */
+int st_evaluation_fixed_trials(const stEvaluation *e);
+
 /* 1 when an evaluation of `stage` has hand-over trials rolled in by the elite (main-prim,
  * stage.handover, stage.handover_rollin = elite): st_stage_evaluate_rollin then needs the
  * elite's network. */

@@ -501,6 +501,11 @@ static double chain_weight(const stProtocol *p, const stEvaluation *e, int fixed
   return fixed ? pow((double)solved / fixed, p->cfg.stage_chain_gate) : 1.0;
 }
 
+int st_evaluation_fixed_trials(const stEvaluation *e) {
+  ST_ASSERT(e);
+  return e->ntrials - e->handover_trials - e->varied_trials - e->chain_trials;
+}
+
 int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e) {
   ST_ASSERT(cfg && e);
   ST_ASSERT(e->successes >= 0 && e->successes <= e->ntrials);
@@ -514,7 +519,7 @@ int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e) {
   if (!fixed_chained) return e->successes == e->ntrials;
   int fixed = 0;
   for (int t = 0; t < ST_PRIM_TRIALS; t++) fixed += e->success[t];
-  return fixed == e->ntrials - e->handover_trials - e->varied_trials - e->chain_trials &&
+  return fixed == st_evaluation_fixed_trials(e) &&
          e->chain_successes == e->chain_trials;
 }
 

@@ -455,12 +455,11 @@ static int next_stage(run *R, int gen, int all, stStatus *st, char *err, size_t 
   const stEvaluation *e = &R->eval[st_ga_ranked(R->ga, 0)];
   /* what completion counted (st_evaluation_completes): with fixed_chained, not the hand-over
    * and varied trials, which only train */
-  const int counted_fixed = e->ntrials - e->handover_trials - e->varied_trials - e->chain_trials;
   if (R->def->progress && R->cfg->stage_chain_complete == ST_CHAIN_COMPLETE_FIXED_CHAINED &&
       e->chain_trials > 0)
     fprintf(R->def->progress, "evolve: %s complete at generation %d (%d genotypes solve the %d "
-            "fixed and %d chained trials)\n", stage_label(R), gen, all, counted_fixed,
-            e->chain_trials);
+            "fixed and %d chained trials)\n", stage_label(R), gen, all,
+            st_evaluation_fixed_trials(e), e->chain_trials);
   else if (R->def->progress)
     fprintf(R->def->progress, "evolve: %s complete at generation %d (%d genotypes solve all %d trials)\n",
             stage_label(R), gen, all, e->ntrials);
