@@ -279,6 +279,33 @@ if price --protocol chain --threads 2 --given-runs 4 --runs 5 > "$tmp/qg.out" 2>
    grep -q "^prims, chain: given (PRIM_RUNS, CHAIN_RUNS, 4 runs), nothing to run.$" "$tmp/qg.out"; then
   ok "cost: given primitive runs priced as nothing to run, the tests on their count (by hand)"
 else ko "cost, given runs" "$(cat "$tmp/qg.out")"; fi
+# status: what OUT's files say is done and left, at the same prices (given runs, RUNS=2): ST-CT
+# seed 1 done (population.genome: done whatever its generations, 60 here), ST seed 1 at 30 generations (checkpoint), one robustness
+# summary written. By hand: ST-CT 1 run x 100 x 100 x 0.6 s = 1.67 core-hours; ST (70 + 100) x
+# 60 s = 2.83; CT and NI 200 x 60 s = 3.33 each; the integration test 1,600 x 0.05 s = 0.022;
+# robustness 3 jobs x 80 trials x 0.1 s = 0.0067; generalisation 6 x 3,920 x 0.1 s = 0.65;
+# total 11.85 core-hours, 5.9 hours on 2 threads
+mkdir -p "$tmp/s/int-stct-s1" "$tmp/s/int-st-s1" "$tmp/s/posteval/robustness-ct"
+{ echo generation,best; seq 0 59 | sed 's/$/,1/'; } > "$tmp/s/int-stct-s1/fitness.csv"
+: > "$tmp/s/int-stct-s1/population.genome"
+{ echo generation,best; seq 0 29 | sed 's/$/,1/'; } > "$tmp/s/int-st-s1/fitness.csv"
+: > "$tmp/s/int-st-s1/checkpoint"; : > "$tmp/s/posteval/robustness-ct/summary.csv"
+pstat() { python3 tools/replicate_cost.py --preset full --protocol chain --runs 2 --given-runs 4 \
+  --threads 2 --out "$tmp/s" --eval-cost "$BUILD/eval_cost" "${assume[@]}" --status "$@"; }
+if pstat > "$tmp/st.out" 2>&1 &&
+   grep -qE "^integrated ST-CT +2 +1 +0 +60 of 200 +1.7 +0.83 " "$tmp/st.out" &&
+   grep -qE "^integrated ST +2 +0 +1 +30 of 200 +2.8 +1.4 " "$tmp/st.out" &&
+   grep -qE "^integrated NI +2 +0 +0 +0 of 200 +3.3 +1.7 " "$tmp/st.out" &&
+   grep -qE "^robustness +4 +1 +0 +- +0.0067 " "$tmp/st.out" &&
+   grep -qx "Left: 11.8 core-hours, 5.9 hours on 2 threads; at most 11.8 core-hours, 5.9 hours." "$tmp/st.out" &&
+   grep -qx "Running: int-st-s1 (integrated ST, generation 30 of 100)." "$tmp/st.out"; then
+  ok "status: the jobs done and running, what is left (by hand)"
+else ko "status" "$(cat "$tmp/st.out")"; fi
+mkdir -p "$tmp/s/int-ct-s1"; printf 'gen,best\n0,1\n' > "$tmp/s/int-ct-s1/fitness.csv"
+if ! pstat > /dev/null 2> "$tmp/e" && grep -q "int-ct-s1/fitness.csv:1: expected the columns generation" "$tmp/e"; then
+  ok "status: a fitness.csv without its generation column is refused, FILE:LINE"
+else ko "status, bad fitness.csv" "$(cat "$tmp/e")"; fi
+
 # refused: a population that is not there, arguments it cannot price, a bad RUNS
 $COST cost OUT="$tmp/p" COST_PRIM_POP=nowhere.genome > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "nowhere.genome (COST_PRIM_POP): no such file" "$tmp/e"; then

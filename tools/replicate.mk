@@ -6,6 +6,7 @@
 #   make replicate [PRESET=small] [RUNS=N] [OUT=DIR] [THREADS=N]      (top-level Makefile)
 #   make -f tools/replicate.mk [target] [the same variables]
 #   make -f tools/replicate.mk cost [the same variables] [REMEASURE=1]  what it will cost
+#   make -f tools/replicate.mk status [the same variables]   what is done and left, while it runs
 #   make -f tools/replicate.mk snapshot|restore OUT=DIR SNAPSHOT=DIR    copy it while it runs
 #
 # Steps and their files (under OUT):
@@ -131,7 +132,7 @@ STATS_OUT := $(OUT)/stats/table_3_1.txt $(OUT)/stats/table_3_2.txt $(OUT)/stats/
 REPORT := $(OUT)/report.md
 
 .PHONY: FORCE all prims chain integration integrated robustness generalisation stats figures report jobs \
-  cost snapshot restore
+  cost status snapshot restore
 .DELETE_ON_ERROR:
 # a step's files stay when a later step fails: they are results
 .SECONDARY:
@@ -166,8 +167,10 @@ COST_CHAIN_POP ?= data/evolved/chain_candidates/hcg_p2_from50/checkpoint
 # % is the condition (stct, st, ct, ni)
 COST_INT_POP ?= data/evolved/unchained/int_%_s1/population.genome
 REMEASURE ?=
-cost:
-	@$(PYTHON) tools/replicate_cost.py --preset=$(PRESET) --protocol=$(PROTOCOL) --runs=$(RUNS) \
+# status: the same prices applied to what OUT's files say is left (done jobs, generations run)
+status: STATUS_ARG := --status
+cost status:
+	@$(PYTHON) tools/replicate_cost.py $(STATUS_ARG) --preset=$(PRESET) --protocol=$(PROTOCOL) --runs=$(RUNS) \
 	  --threads=$(THREADS) --out=$(OUT) --eval-cost=$(EVAL_COST) --sample=$(COST_SAMPLE) \
 	  --prim-pop=$(COST_PRIM_POP) --chain-pop=$(COST_CHAIN_POP) --int-pop=$(COST_INT_POP) \
 	  --prim-args='$(PRIM_ARGS)' --chain-args='$(CHAIN_ARGS)' --int-args='$(INT_ARGS)' \

@@ -179,6 +179,10 @@ class Step:
         self.pop = pop
         self.max_gens = gens if max_gens is None else max_gens
         self.max_evals = evals if max_evals is None else max_evals
+        # where its jobs write (--status): an evolution step's run directories and the
+        # generations of theirs it covers ([first, last), or the fitness.csv rows of one stage);
+        # a test's (directory, trials, CPU s per trial) per job
+        self.runs, self.first, self.stage, self.tests = [], 0, None, []
 
     def core_hours(self, upper=False):
         return (self.max_evals if upper else self.evals) * self.cost / 3600.0
@@ -198,6 +202,11 @@ def evolution(name, runs, c, gens_arg):
     return Step(name, runs, c.seconds, cap, runs * c.plan["population"] * cap, c.plan["population"])
 
 
+def run_dirs(a, prefix):
+    """the run directories of a step's jobs, as tools/replicate.mk names them"""
+    return [os.path.join(a.out, "%s-s%d" % (prefix, seed)) for seed in range(1, a.runs + 1)]
+
+
 def plan_primitive_steps(a, meter, pop, primitives, steps, costs, notes):
     """the steps that evolve the primitive runs (prims and, with PROTOCOL=chain, chain)"""
     n = a.sample
@@ -214,6 +223,8 @@ def plan_primitive_steps(a, meter, pop, primitives, steps, costs, notes):
     steps.append(Step("prims: simple-prim", a.runs, simple.seconds, gs, a.runs * P * gs, P, 0, 0))
     steps.append(Step("prims: main-prim", a.runs, main.seconds, gm, a.runs * P * gm, P, cap,
                       a.runs * P * cap))
+    for s, stage in zip(steps[-2:], ("simple-prim", "main-prim")):
+        s.runs, s.stage = run_dirs(a, "prims"), stage
     notes.append("prims: expected, the thesis's medians (%s, 3.1): simple-prim complete at "
                  "generation %d, all 16 trials at %d, so %d in main-prim%s; at most %d "
                  "generations (%s), all priced as main-prim." % (
@@ -235,12 +246,14 @@ def plan_primitive_steps(a, meter, pop, primitives, steps, costs, notes):
             early = meter.cost("chain-replace", chain_args + ["--generation", "0"] + chain_sets, n)
             costs.append(("chain replace individual", early, primitives))
             steps.append(evolution("chain: replace", a.runs, early, replace))
+            steps[-1].runs = run_dirs(a, "chain")
         if cap > replace:
             chain = meter.cost("chain", chain_args + ["--generation", str(cap - 1)] + chain_sets, n)
             costs.append(("chain extra individual" if replace else "chain-stage individual",
                           chain, primitives))
             steps.append(evolution("chain: extra" if replace else "chain", a.runs, chain,
                                    cap - replace))
+            steps[-1].runs, steps[-1].first = run_dirs(a, "chain"), replace
         notes.append("chain: %sexpected and at most its cap, %d generations (%s): a chain run "
                      "ends earlier only when ga.success_genotypes genotypes of one generation "
                      "solve the 16 fixed and all chained trials (stage.chain_complete), an "
@@ -273,32 +286,37 @@ def plan_steps(a, meter):
     costs.append(("integration-test trial", integ, primitives))
     steps.append(Step("integration test", 1, integ.seconds, None,
                       primitive_runs * integ.plan["individuals"] * integ.plan["trials"]))
+    steps[-1].tests = [(os.path.join(a.out, "posteval", "integration"), steps[-1].evals,
+                        integ.seconds)]
 
     int_gens, int_sets = step_args("INT_ARGS", a.int_args)
     _, rob_sets = step_args("ROB_ARGS", a.rob_args)
     _, gen_sets = step_args("GEN_ARGS", a.gen_args)
-    tests = {"robustness": [], "generalisation": []}  # (label, cost) of each job
+    tests = {"robustness": [], "generalisation": []}  # (label, cost, directory) of each job
     for c, label in CONDS:
         cfg = "configs/integrated_%s.cfg" % c
         ipop = need_file(a.int_pop.replace("%", c), "COST_INT_POP")
         run = meter.cost("integrated-" + c, [cfg, "--population", ipop, "--spread",
                                              "--generation", "1"] + int_sets, n)
         steps.append(evolution("integrated " + label, a.runs, run, int_gens))
+        steps[-1].runs = run_dirs(a, "int-" + c)
         int_cap = steps[-1].gens
         costs.append(("integrated %s individual" % label, run, ipop))
         test = [cfg, "--population", ipop, "--posteval"]
         tests["robustness"].append((label, meter.cost("robustness-" + c, test + ["robustness"]
-                                                      + rob_sets, 2 * n)))
+                                                      + rob_sets, 2 * n), "robustness-" + c))
         for v in [""] + (["0"] if c in CONDS0 else []):
             tests["generalisation"].append((label + v, meter.cost(
                 "generalisation-" + c + v, test + ["generalisation"] +
-                (["--caretaker"] if v else []) + gen_sets, 2 * n)))
+                (["--caretaker"] if v else []) + gen_sets, 2 * n), "generalisation-" + c + v))
     for name, jobs in tests.items():
-        evals = [a.runs * c.plan["individuals"] * c.plan["trials"] for _, c in jobs]
-        cpu = sum(e * c.seconds for e, (_, c) in zip(evals, jobs))
+        evals = [a.runs * c.plan["individuals"] * c.plan["trials"] for _, c, _ in jobs]
+        cpu = sum(e * c.seconds for e, (_, c, _) in zip(evals, jobs))
         steps.append(Step(name, len(jobs), cpu / sum(evals), None, sum(evals)))
+        steps[-1].tests = [(os.path.join(a.out, "posteval", d), e, c.seconds)
+                           for e, (_, c, d) in zip(evals, jobs)]
         costs.append(("%s trial" % name, None, ", ".join("%s %.3g" % (label, c.seconds)
-                                                         for label, c in jobs)
+                                                         for label, c, _ in jobs)
                       + (" s  (%s each, by genotypes of the integrated runs' files above)"
                          % plural(jobs[0][1].n, "trial") if jobs[0][1].n else " s  (assumed)")))
     notes.append("integrated: %d generations (%s), always run in full. Tests: every trial of "
@@ -368,6 +386,83 @@ def table(a, meter, steps, costs, notes, threads):
     return "\n".join(out)
 
 
+def generations_run(run, stage):
+    """the generations a run directory's fitness.csv holds (of one stage, if given)"""
+    path = os.path.join(run, "fitness.csv")
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except FileNotFoundError:
+        return 0
+    except (OSError, csv.Error) as e:
+        die("%s: cannot read: %s" % (path, e))
+    if rows and ("generation" not in rows[0] or (stage and "stage" not in rows[0])):
+        die("%s:1: expected the columns generation%s" % (path, " and stage" if stage else ""))
+    return len({r["generation"] for r in rows if not stage or r["stage"] == stage})
+
+
+def job_progress(step, run):
+    """(generations of the step run, finished, running) for one job of an evolution step"""
+    done = os.path.exists(os.path.join(run, "population.genome"))
+    if step.stage:  # prims: simple-prim is finished once main-prim has begun
+        g = generations_run(run, step.stage)
+        later = step.stage == "simple-prim" and generations_run(run, "main-prim") > 0
+    else:
+        g, later = min(max(generations_run(run, None) - step.first, 0), step.max_gens), False
+    finished = done or later or g >= step.max_gens
+    return g, finished, not finished and (g > 0 or os.path.exists(os.path.join(run, "checkpoint")))
+
+
+def status_table(a, meter, steps, threads):
+    """what is done and what is left of the replication in OUT, from its files"""
+    ts = "%d thread%s" % (threads, "" if threads == 1 else "s")
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    head = [["", "", "", "", "", "left, expected", "", "", "left, at most", ""],
+            ["step", "jobs", "done", "running", "gens run", "core-h", "wall h", "|", "core-h",
+             "wall h"]]
+    rows, running, left = [], [], [0.0, 0.0, 0.0, 0.0]
+    for s in steps:
+        if s.tests:  # a test's job is done when its summary is written
+            done = [os.path.exists(os.path.join(d, "summary.csv")) for d, _, _ in s.tests]
+            exp = sum(e * c for (_, e, c), ok in zip(s.tests, done) if not ok) / 3600.0
+            top, gens, n_run = exp, "-", 0
+        else:
+            jobs = [(r,) + job_progress(s, r) for r in s.runs]
+            done = [fin for _, _, fin, _ in jobs]
+            per_gen = s.pop * s.cost / 3600.0
+            exp = sum(max(s.gens - g, 0) for _, g, fin, _ in jobs if not fin) * per_gen
+            top = sum(max(s.max_gens - g, 0) for _, g, fin, _ in jobs if not fin) * per_gen
+            gens = "%d of %d" % (sum(g for _, g, _, _ in jobs), s.jobs * s.max_gens)
+            running += ["%s (%s, generation %d of %d)" % (os.path.basename(r), s.name, g,
+                                                          s.max_gens)
+                        for r, g, _, run in jobs if run]
+            n_run = sum(run for _, _, _, run in jobs)
+        use = s.threads_used(threads)
+        left = [left[0] + exp, left[1] + exp / use, left[2] + top, left[3] + top / use]
+        rows.append([s.name, str(s.jobs), str(sum(done)), str(n_run), gens, hours(exp),
+                     hours(exp / use), "|", hours(top), hours(top / use)])
+    rows.append(["total", "", "", "", "", hours(left[0]), hours(left[1]), "|", hours(left[2]),
+                 hours(left[3])])
+    wid = [max(len(r[i]) for r in rows + head) for i in range(len(rows[0]))]
+    out = ["make replicate PRESET=%s PROTOCOL=%s RUNS=%d in %s, %s: what is done and what is "
+           "left on %s (an estimate)" % (a.preset, a.protocol, a.runs, a.out, now, ts), ""]
+    out += ["  ".join(x.ljust(wid[0]) if i == 0 else x.rjust(wid[i])
+                      for i, x in enumerate(r)).rstrip() for r in head + rows]
+    out += ["", "Left: %s core-hours, %s hours on %s; at most %s core-hours, %s hours."
+            % (hours(left[0]), hours(left[1]), ts, hours(left[2]), hours(left[3]))]
+    out += ["Running: " + (", ".join(running) if running else "nothing") + "."]
+    notes = ["done: jobs whose result is written (a run's population.genome, a test's "
+             "summary.csv; a primitive stage also once the next one has begun); running: "
+             "jobs with generations or a checkpoint but no result; gens run: the generations "
+             "the jobs' fitness.csv hold, of their cap. left: the generations still to run "
+             "(expected: to the expected generations of `cost`; at most: to the cap) and the "
+             "tests not done, at the CPU seconds per evaluation of `cost` (%s), each job "
+             "one after the other as there. A job past its expected generations but not done "
+             "is counted as needing none more (expected)." % meter.source()]
+    out += [textwrap.fill(x, 100, subsequent_indent="  ") for x in notes]
+    return "\n".join(out)
+
+
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--preset", required=True)
@@ -386,6 +481,8 @@ def main(argv):
     ap.add_argument("--remeasure", action="store_true")
     ap.add_argument("--eval-cost", default="build/eval_cost")
     ap.add_argument("--assume", action="append", metavar="KIND=SECONDS")
+    ap.add_argument("--status", action="store_true",
+                    help="what is done and left in OUT, from its files, instead of the plan")
     a = ap.parse_args(argv)
     for name, var, least in (("runs", "RUNS", 1), ("threads", "THREADS", 0),
                              ("given_runs", "PRIM_RUNS' count", 0),
@@ -402,7 +499,8 @@ def main(argv):
     steps, costs, notes = plan_steps(a, meter)
     meter.save()
     try:
-        print(table(a, meter, steps, costs, notes, threads), flush=True)
+        print(status_table(a, meter, steps, threads) if a.status
+              else table(a, meter, steps, costs, notes, threads), flush=True)
     except BrokenPipeError:  # `... cost | head`: what was read is enough
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
 
