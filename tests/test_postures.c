@@ -255,14 +255,18 @@ static void posture_state(fixture *f, int p, int k, double q[ST_NDOF], state *s)
   st_world_destroy(w);
 }
 
-static void test_postures_reach(void) {
-  fixture f;
-  CU_ASSERT_FATAL(fixture_open(&f));
+/* the reach postures' SPEC 8 properties; p[k], the palm's facing of the table (1 - n_z) / 2,
+ * from the FK's palm normal */
+static void check_reach_postures(fixture *fx, double p[ST_NPOSTURE]) {
+  fixture f = *fx;
   const stRobot *r = f.robot;
   double q[ST_NPOSTURE][ST_NDOF], palm[ST_NPOSTURE][3];
   for (int k = 0; k < ST_NPOSTURE; k++) {
     state s;
     posture_state(&f, ST_PRIM_REACH, k, q[k], &s);
+    double pos[3], n[3];
+    palm_pose(r, q[k], pos, n);
+    p[k] = 0.5 * (1.0 - n[2]);
     memcpy(palm[k], s.q.palm, sizeof palm[k]);
     CU_ASSERT(fabs(st_robot_dof_angle(r, ST_DOF_TORSO_YAW, q[k][0])) < 1e-9);
     CU_ASSERT(fabs(st_robot_dof_angle(r, ST_DOF_TORSO_PITCH, q[k][1])) < 1e-9);
@@ -280,6 +284,42 @@ static void test_postures_reach(void) {
       CU_ASSERT(mx >= 0.1);
       CU_ASSERT(dist3(palm[a], palm[b]) >= 0.05);
     }
+}
+
+/* by default the position only: the palms face the table at p 0.650, 0.583, 0.227, 0.691
+ * (measured; none above open's 0.9 (so a reach that keeps its orientation arrives unopened) */
+static void test_postures_reach(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  double p[ST_NPOSTURE];
+  check_reach_postures(&f, p);
+  static const double want[ST_NPOSTURE] = {0.650, 0.583, 0.227, 0.691};
+  for (int k = 0; k < ST_NPOSTURE; k++) CU_ASSERT_DOUBLE_EQUAL(p[k], want[k], 0.005);
+  fixture_close(&f);
+}
+
+/* postures.reach_palm_down: the same properties, every palm turned to face the table: p above
+ * 0.85 (measured 0.987, 0.860, 0.853, 0.958: reach 1's and 2's arms turn no further there), two
+ * above open's 0.9 */
+static void test_postures_reach_palm_down(void) {
+  fixture f;
+  CU_ASSERT_FATAL(fixture_open(&f));
+  f.cfg.postures_reach_palm_down = 1;
+  st_scene_from_config(&f.cfg, &f.scene);
+  double p[ST_NPOSTURE];
+  check_reach_postures(&f, p);
+  int above = 0;
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    CU_ASSERT(p[k] > 0.85);
+    above += p[k] > 0.9;
+  }
+  CU_ASSERT(above >= 2);
+  char err[512], why[256];
+  for (int k = 0; k < ST_NPOSTURE; k++) {
+    double q[ST_NDOF];
+    CU_ASSERT_EQUAL_FATAL(st_posture(f.robot, &f.scene, ST_PRIM_REACH, k, q, err, sizeof err), ST_OK);
+    CU_ASSERT(st_posture_check(f.robot, &f.scene, ST_PRIM_REACH, k, q, why, sizeof why));
+  }
   fixture_close(&f);
 }
 
@@ -890,6 +930,7 @@ void st_suite_postures(void) {
   ST_ADD_TEST(test_ik_errors);
   ST_ADD_TEST(test_postures_all);
   ST_ADD_TEST(test_postures_reach);
+  ST_ADD_TEST(test_postures_reach_palm_down);
   ST_ADD_TEST(test_postures_open);
   ST_ADD_TEST(test_postures_grasp);
   ST_ADD_TEST(test_postures_grasp_ball_x);

@@ -133,6 +133,7 @@ extern "C" {
   INT(prediction, bonus_window, 5, 0, 100000, "a switch predicted fewer than this many steps early earns the bonus (eq. 2.23)") \
   REAL(postures, reach_clearance, 0.15, 0.0, 2.0, "reach start: palm centre at least this far from every object position, m (SPEC 8)") \
   INT(postures, reach_max_steps, 40, 1, 100000, "reach start: a bang-bang IK controller in kinematic mode reaches the reach point within this many steps (2 s of the 3 s trial: thesis 2.7, enough time from every start) ") \
+  BOOL(postures, reach_palm_down, 0, "reach start: the palm also turned to face the table (p > 0.85), so a reach keeping it arrives opened and open can be jumped (thesis 3.1.1); off: position only (PROTOCOL.md)") \
   REAL(postures, open_near_ball_x, 0.02, -0.2, 0.2, "open k=0,1: ball centre ahead of the palm centre along the fingers, m") \
   REAL(postures, open_near_gap, 0.015, -0.1, 0.3, "open k=0,1: palm above the ball top, m (hand around the ball, almost grasping)") \
   REAL(postures, open_near_oppose, 0.5, 0.0, 1.0, "open k=0,1: thumb opposition, normalised") \

@@ -42,6 +42,7 @@ typedef struct stPostureDef {
   double vary_torso_pitch, vary_wrist_prosup, vary_wrist_pitch; /* the IK start's other end, deg */
   int vary_open_high; /* postures.vary_open_high: drawn open starts are all of k=2,3's kind */
   int reach_max_steps;
+  int reach_palm_down; /* postures.reach_palm_down: the reach starts' palm faces the table too */
   double reach_height; /* fitness.reach_height: the reach point above the object centre */
 } stPostureDef;
 

@@ -36,6 +36,13 @@ static const double REACH_START_DEG[ST_NPOSTURE][9] = {
     {0, 0, -20, 60, 0, 60, 0, 0, 0},      /* arm half raised to the side */
     {0, 0, -60, 30, 40, 80, 40, -30, 0},  /* hand across in front, wrist turned */
 };
+/* postures.reach_palm_down: the IK's starts, where the arm can turn the palm down */
+static const double REACH_DOWN_START_DEG[ST_NPOSTURE][9] = {
+    {0, 0, -30, 20, 0, 90, 0, 0, 0},
+    {0, 0, -10, 80, 0, 30, 0, 0, 0},
+    {0, 0, -20, 60, 0, 60, 0, 0, 0},
+    {0, 0, -60, 30, 40, 80, 40, -30, 0},
+};
 /* chosen so that every reach start is >= 0.18 m from every object position (0.15 + the 2 cm
  * offsets) and a full-speed controller reaches its object position within 40 steps (see
  * st_posture_reach_steps; the first choice here needed 70 steps for P1 and stalled evolution) */
@@ -64,6 +71,8 @@ static const double START_DEG[9] = {0, 0, -40, 30, 0, 90, 0, 0, 0};
 
 /* checks (SPEC §8 properties; tolerances of the constructions above) */
 #define CHECK_PALM_DOWN 0.9     /* p = (1 - n_z) / 2 above this: palm facing the table */
+#define CHECK_REACH_DOWN 0.85   /* postures.reach_palm_down: reach 1's arm, out to the side,
+                                 * turns its palm to p 0.86 at most there (its IK's optimum) */
 #define CHECK_OPEN_XY 0.03      /* open: palm centre within this of the ball (horizontally) */
 #define CHECK_OPEN_NEAR_MAX_GAP 0.03 /* open k=0,1: palm at most this above the ball top */
 #define CHECK_OPEN_NEAR_FLEX_LO 0.1  /* open k=0,1: fingers partly closed */
@@ -225,9 +234,19 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k,
       stIkDef def = st_ik_default_def();
       def.dof_weight[ST_DOF_TORSO_YAW] = def.dof_weight[ST_DOF_TORSO_PITCH] = 0.0;
       stIkTarget t = st_ik_target(r->palm_body, pos);
-      start_posture(r, REACH_START_DEG[k], q);
+      start_posture(r, PD.reach_palm_down ? REACH_DOWN_START_DEG[k] : REACH_START_DEG[k], q);
       q[ST_DOF_THUMB_OPPOSE] = REACH_THUMB_OPPOSE;
       q[ST_DOF_THUMB_FLEX] = q[ST_DOF_FINGER_FLEX] = 0.0;
+      if (PD.reach_palm_down) {
+        /* the palm turned down first, as far as the arm allows there; the position-only solve
+         * below then starts from that orientation and keeps most of it (the check asks
+         * p > 0.9, not an exact normal) */
+        static const double normal[3] = {0, 0, 1}, down[3] = {0, 0, -1};
+        stIkTarget turn = t;
+        st_ik_target_align(&turn, 0, normal, down, 10.0 * NORMAL_WEIGHT);
+        stIkResult res;
+        (void)st_ik_solve(r, &def, &turn, q, &res);
+      }
       return ik_run(r, &def, &t, q, what, k, err, errsz) ? ST_ERR_RANGE : ST_OK;
     }
     case ST_PRIM_OPEN: {
@@ -439,6 +458,8 @@ static int check_world(const stRobot *r, const stScene *s, const stWorld *w, int
                PD.reach_clearance);
       }
       if (c->robot_object) FAIL("the hand touches the object");
+      if (PD.reach_palm_down && !(p > CHECK_REACH_DOWN))
+        FAIL("p = %.3f (expected > %.2f: palm down, postures.reach_palm_down)", p, CHECK_REACH_DOWN);
       int steps = st_posture_reach_steps(r, s, k, w->qhat, 4 * PD.reach_max_steps);
       if (steps < 0 || steps > PD.reach_max_steps)
         FAIL("a full-speed IK controller needs %d steps to reach (expected <= %d)", steps,

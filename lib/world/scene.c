@@ -68,6 +68,7 @@ void st_scene_from_config(const stConfig *c, stScene *s) {
   s->posture.vary_wrist_pitch = c->postures_vary_wrist_pitch;
   s->posture.vary_open_high = c->postures_vary_open_high;
   s->posture.reach_max_steps = c->postures_reach_max_steps;
+  s->posture.reach_palm_down = c->postures_reach_palm_down;
   s->posture.reach_height = c->fitness_reach_height;
 }
 
