@@ -110,7 +110,8 @@ static void choice_name(const char *section, const char *name, int v, char *buf,
   else snprintf(buf, n, "%s", v ? "true" : "false");
 }
 
-/* the run's config.ini has the condition of cfg (Table 2.1's keys) */
+/* the run's config.ini has the condition of cfg (Table 2.1's keys) and its reach starts (the
+ * post-evaluations start from the integrated stage's reach postures) */
 static stStatus same_condition(const char *dir, const stConfig *cfg, char *err, size_t errsz) {
   char path[ST_PATH_MAX];
   snprintf(path, sizeof path, "%s/config.ini", dir);
@@ -122,13 +123,15 @@ static stStatus same_condition(const char *dir, const stConfig *cfg, char *err, 
   static const char *const keys[][2] = {
       {"stage", "stages"},           {"network", "arch"},       {"integrated", "words_even"},
       {"integrated", "words_odd"},   {"integrated", "fitness_even"}, {"integrated", "fitness_odd"},
-      {"integrated", "first_generation"}};
+      {"integrated", "first_generation"}, {"postures", "reach_palm_down"}};
   const int have[] = {rc.stage_stages, rc.network_arch, rc.integrated_words_even,
                       rc.integrated_words_odd, rc.integrated_fitness_even,
-                      rc.integrated_fitness_odd, rc.integrated_first_generation};
+                      rc.integrated_fitness_odd, rc.integrated_first_generation,
+                      rc.postures_reach_palm_down};
   const int want[] = {ST_STAGES_INTEGRATED, cfg->network_arch, cfg->integrated_words_even,
                       cfg->integrated_words_odd, cfg->integrated_fitness_even,
-                      cfg->integrated_fitness_odd, cfg->integrated_first_generation};
+                      cfg->integrated_fitness_odd, cfg->integrated_first_generation,
+                      cfg->postures_reach_palm_down};
   for (int i = 0; i < (int)(sizeof have / sizeof have[0]); i++) {
     if (have[i] == want[i]) continue;
     char h[64], w[64];
