@@ -306,6 +306,16 @@ if ! pstat > /dev/null 2> "$tmp/e" && grep -q "int-ct-s1/fitness.csv:1: expected
   ok "status: a fitness.csv without its generation column is refused, FILE:LINE"
 else ko "status, bad fitness.csv" "$(cat "$tmp/e")"; fi
 
+# SET: every evolve and posteval command carries each setting, after the step's own arguments
+$REP -n all OUT="$tmp/sd" RUNS=1 SET='postures.reach_palm_down=1 integrated.fail_end=exact' > "$tmp/sd.out" 2>&1
+tr '\n' ' ' < "$tmp/sd.out" | sed 's/\\ */ /g' | grep -o "apps/\(evolve\|posteval\) [^>]*" > "$tmp/sd.cmds"
+if [ "$(grep -c . "$tmp/sd.cmds")" -ge 6 ] &&
+   [ "$(grep -c -- "--set postures.reach_palm_down=1 --set integrated.fail_end=exact" "$tmp/sd.cmds")" = "$(grep -c . "$tmp/sd.cmds")" ] &&
+   ! $REP -n all OUT="$tmp/sd" SET='postures.reach_palm_down' > /dev/null 2> "$tmp/e" &&
+   grep -q "SET: 'postures.reach_palm_down': expected section.key=value" "$tmp/e"; then
+  ok "SET: every evolve and posteval command carries it; a setting without = is refused"
+else ko "SET" "$(cat "$tmp/sd.cmds" "$tmp/e")"; fi
+
 # refused: a population that is not there, arguments it cannot price, a bad RUNS
 $COST cost OUT="$tmp/p" COST_PRIM_POP=nowhere.genome > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "nowhere.genome (COST_PRIM_POP): no such file" "$tmp/e"; then

@@ -7,6 +7,7 @@
 #   make -f tools/replicate.mk [target] [the same variables]
 #   make -f tools/replicate.mk cost [the same variables] [REMEASURE=1]  what it will cost
 #   make -f tools/replicate.mk status [the same variables]   what is done and left, while it runs
+#   make replicate SET='section.key=value ...'   settings for every evolve and posteval step
 #   make -f tools/replicate.mk snapshot|restore OUT=DIR SNAPSHOT=DIR    copy it while it runs
 #
 # Steps and their files (under OUT):
@@ -71,6 +72,16 @@ endif
 ifeq ($(filter $(PROTOCOL),chain thesis),)
 $(error PROTOCOL=$(PROTOCOL): expected chain or thesis)
 endif
+
+# SET: settings (section.key=value, space-separated) for every simulated step, evolution and
+# post-evaluation alike, e.g. SET=postures.reach_palm_down=1 (docs/PROTOCOL.md, "Why open is
+# rarely jumped"): each step's own ..._ARGS come first, then these
+SET ?=
+SET_BAD := $(strip $(foreach s,$(SET),$(if $(findstring =,$(s)),,$(s))))
+ifneq ($(SET_BAD),)
+$(error SET: '$(firstword $(SET_BAD))': expected section.key=value)
+endif
+SET_ARGS := $(foreach s,$(SET),--set $(s))
 
 comma := ,
 empty :=
@@ -173,8 +184,9 @@ cost status:
 	@$(PYTHON) tools/replicate_cost.py $(STATUS_ARG) --preset=$(PRESET) --protocol=$(PROTOCOL) --runs=$(RUNS) \
 	  --threads=$(THREADS) --out=$(OUT) --eval-cost=$(EVAL_COST) --sample=$(COST_SAMPLE) \
 	  --prim-pop=$(COST_PRIM_POP) --chain-pop=$(COST_CHAIN_POP) --int-pop=$(COST_INT_POP) \
-	  --prim-args='$(PRIM_ARGS)' --chain-args='$(CHAIN_ARGS)' --int-args='$(INT_ARGS)' \
-	  --integ-args='$(INTEG_ARGS)' --rob-args='$(ROB_ARGS)' --gen-args='$(GEN_ARGS)' \
+	  --prim-args='$(PRIM_ARGS) $(SET_ARGS)' --chain-args='$(CHAIN_ARGS) $(SET_ARGS)' \
+	  --int-args='$(INT_ARGS) $(SET_ARGS)' --integ-args='$(INTEG_ARGS) $(SET_ARGS)' \
+	  --rob-args='$(ROB_ARGS) $(SET_ARGS)' --gen-args='$(GEN_ARGS) $(SET_ARGS)' \
 	  $(if $(GIVEN_PRIMS),--given-runs=$(words $(GIVEN_PRIMS))) \
 	  $(if $(filter-out 0 no,$(REMEASURE)),--remeasure)
 
@@ -199,18 +211,18 @@ restore:
 # says "complete" (writing nothing, so nothing after it is redone) for a run that is
 $(OUT)/prims-s%/population.genome: FORCE
 	@mkdir -p $(OUT)
-	$(EVOLVE) configs/prims.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(PRIM_ARGS) >> $(@D).log
+	$(EVOLVE) configs/prims.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(PRIM_ARGS) $(SET_ARGS) >> $(@D).log
 
 # the chain stage continues primitive run N's final population, with the same seed
 $(OUT)/chain-s%/population.genome: $(OUT)/prims-s%/population.genome FORCE
-	$(EVOLVE) configs/chain_prim.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(CHAIN_ARGS) \
+	$(EVOLVE) configs/chain_prim.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(CHAIN_ARGS) $(SET_ARGS) \
 	  --set stage.init_population=$< >> $(@D).log
 
 # every integrated run starts from the same assembled genotypes: the top 10 of each primitive run
 $(OUT)/int-%/population.genome: $(PRIMITIVES) FORCE
 	@mkdir -p $(OUT)
 	$(EVOLVE) configs/integrated_$(word 1,$(subst -s, ,$*)).cfg --seed $(lastword $(subst -s, ,$*)) \
-	  --out $(@D) --resume $(THREADS_ARG) $(INT_ARGS) \
+	  --out $(@D) --resume $(THREADS_ARG) $(INT_ARGS) $(SET_ARGS) \
 	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIMITIVES))) >> $(@D).log
 
 FORCE:
@@ -219,19 +231,19 @@ FORCE:
 # ---- post-evaluation (each writes DIR/trials.csv and DIR/summary.csv atomically; --resume
 # continues a killed test from its DIR/posteval.journal)
 $(POST_INTEG): $(PRIMITIVES)
-	$(POSTEVAL) integration configs/prims.cfg $(PRIMITIVES) --out $(@D) --resume $(THREADS_ARG) $(INTEG_ARGS)
+	$(POSTEVAL) integration configs/prims.cfg $(PRIMITIVES) --out $(@D) --resume $(THREADS_ARG) $(INTEG_ARGS) $(SET_ARGS)
 
 $(OUT)/posteval/robustness-%/summary.csv: $(INT_POPS)
 	$(POSTEVAL) robustness configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --out $(@D) --resume $(THREADS_ARG) $(ROB_ARGS)
+	  --out $(@D) --resume $(THREADS_ARG) $(ROB_ARGS) $(SET_ARGS)
 
 $(OUT)/posteval/generalisation-%0/summary.csv: $(INT_POPS)
 	$(POSTEVAL) generalisation configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --caretaker --out $(@D) --resume $(THREADS_ARG) $(GEN_ARGS)
+	  --caretaker --out $(@D) --resume $(THREADS_ARG) $(GEN_ARGS) $(SET_ARGS)
 
 $(OUT)/posteval/generalisation-%/summary.csv: $(INT_POPS)
 	$(POSTEVAL) generalisation configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --out $(@D) --resume $(THREADS_ARG) $(GEN_ARGS)
+	  --out $(@D) --resume $(THREADS_ARG) $(GEN_ARGS) $(SET_ARGS)
 
 # posteval writes trials.csv with summary.csv
 $(OUT)/posteval/%/trials.csv: $(OUT)/posteval/%/summary.csv
