@@ -44,6 +44,11 @@ import sys
 import textwrap
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import csvschema  # noqa: E402
+
+# fitness.csv's columns --status reads, by the library's names (tools/csvschema.py)
+GENERATION, STAGE = csvschema.pick(csvschema.FITNESS, "generation", "stage")
 THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
 CONDS = [("stct", "ST-CT"), ("st", "ST"), ("ct", "CT"), ("ni", "NI")]
 CONDS0 = ("stct", "st")  # the generalisation test's caretaker variants (ST-CT0, ST0)
@@ -396,9 +401,10 @@ def generations_run(run, stage):
         return 0
     except (OSError, csv.Error) as e:
         die("%s: cannot read: %s" % (path, e))
-    if rows and ("generation" not in rows[0] or (stage and "stage" not in rows[0])):
-        die("%s:1: expected the columns generation%s" % (path, " and stage" if stage else ""))
-    return len({r["generation"] for r in rows if not stage or r["stage"] == stage})
+    if rows and (GENERATION not in rows[0] or (stage and STAGE not in rows[0])):
+        die("%s:1: expected the columns %s%s" % (path, GENERATION, " and " + STAGE if stage
+                                                 else ""))
+    return len({r[GENERATION] for r in rows if not stage or r[STAGE] == stage})
 
 
 def job_progress(step, run):
