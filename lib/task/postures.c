@@ -36,13 +36,6 @@ static const double REACH_START_DEG[ST_NPOSTURE][9] = {
     {0, 0, -20, 60, 0, 60, 0, 0, 0},      /* arm half raised to the side */
     {0, 0, -60, 30, 40, 80, 40, -30, 0},  /* hand across in front, wrist turned */
 };
-/* postures.reach_palm_down: the IK's starts, where the arm can turn the palm down */
-static const double REACH_DOWN_START_DEG[ST_NPOSTURE][9] = {
-    {0, 0, -30, 20, 0, 90, 0, 0, 0},
-    {0, 0, -10, 80, 0, 30, 0, 0, 0},
-    {0, 0, -20, 60, 0, 60, 0, 0, 0},
-    {0, 0, -60, 30, 40, 80, 40, -30, 0},
-};
 /* chosen so that every reach start is >= 0.18 m from every object position (0.15 + the 2 cm
  * offsets) and a full-speed controller reaches its object position within 40 steps (see
  * st_posture_reach_steps; the first choice here needed 70 steps for P1 and stalled evolution) */
@@ -234,7 +227,7 @@ static stStatus compute(const stRobot *r, const stScene *s, int prim, int k,
       stIkDef def = st_ik_default_def();
       def.dof_weight[ST_DOF_TORSO_YAW] = def.dof_weight[ST_DOF_TORSO_PITCH] = 0.0;
       stIkTarget t = st_ik_target(r->palm_body, pos);
-      start_posture(r, PD.reach_palm_down ? REACH_DOWN_START_DEG[k] : REACH_START_DEG[k], q);
+      start_posture(r, REACH_START_DEG[k], q);
       q[ST_DOF_THUMB_OPPOSE] = REACH_THUMB_OPPOSE;
       q[ST_DOF_THUMB_FLEX] = q[ST_DOF_FINGER_FLEX] = 0.0;
       if (PD.reach_palm_down) {
