@@ -62,6 +62,10 @@ draw fig3_5p fig_int_fitness.py "$FIG/integrated_fitness.csv" "$tmp/int" "$FIG/i
   --label "hand-made" --label "tiny" --label "again" --panel "ST-CT" --panel "NI" --panel "ST-CT" -- \
   "ST-CT" "NI" "hand-made: fitness" "tiny: fitness" "again: fitness"
 has fig3_5p "fig_int_fitness: 2 panels: ST-CT (2 runs), NI (1 run)"
+# --start: generation 0 (first-generation fitness, another scale) left out; past the last refused
+draw fig3_5s fig_int_fitness.py "$FIG/integrated_fitness.csv" --start 2 -- "fitness"
+has fig3_5s "fig_int_fitness: $FIG/integrated_fitness.csv: generations 2-3 plotted (--start 2), best 260"
+refuses "fig3_5: --start past the last generation" "$FIG/integrated_fitness.csv: no generation from 4 on (its last is 3)" fig_int_fitness.py "$FIG/integrated_fitness.csv" --start 4
 refuses "fig3_5: a --panel per run" "2 --panel for 1 runs (expected one per run)" fig_int_fitness.py "$FIG/integrated_fitness.csv" --panel a --panel b
 sed 's/best_bonus_auto/best_auto/' "$FIG/integrated_fitness.csv" > "$tmp/i1.csv"
 refuses "fig3_5: a missing column" "$tmp/i1.csv:1: header without best_bonus_auto" fig_int_fitness.py "$tmp/i1.csv"

@@ -4,7 +4,7 @@
 runs of one condition, one colour per run: total fitness solid, total bonus dotted, the bonus of
 the trials without the caretaker (self talk or no words) dashed.
 
-    /usr/bin/python3 tools/fig_int_fitness.py RUN [RUN...] [--label NAME]... [--panel NAME]... [--title T] [-o fig3_5.png]...
+    /usr/bin/python3 tools/fig_int_fitness.py RUN [RUN...] [--label NAME]... [--panel NAME]... [--title T] [--start G] [-o fig3_5.png]...
 
 With --panel (one per run), runs of the same panel name share a subplot titled by it, panels in
 order of first appearance, two to a row, one y axis: Figs. 3.5-3.8 side by side, one panel per
@@ -12,7 +12,8 @@ condition, one line per seed.
 
 RUN is an `evolve --out` directory of configs/integrated_*.cfg (or its fitness.csv): columns
 generation, best, best_bonus, best_bonus_auto (docs/PROTOCOL.md, "Runs"). Default outputs
-fig3_5.png and fig3_5.svg.
+fig3_5.png and fig3_5.svg. --start 1 leaves out generation 0, whose first-generation fitness
+(thesis 2.9, docs/PROTOCOL.md "Integrated stage") is on another scale and flattens the rest.
 """
 import argparse
 import os
@@ -32,12 +33,23 @@ def load(arg):
     return path, figlib.read_csv(path, COLUMNS, "an integrated run's fitness.csv")
 
 
+def plotted(path, rows, start):
+    """The rows from generation START on; a run with none is refused."""
+    kept = [r for r in rows if r["generation"] >= start]
+    if not kept:
+        figlib.die(f"{path}: no generation from {start} on (its last is {rows[-1]['generation']:g})")
+    print(f"{figlib.PROG}: {path}: generations {kept[0]['generation']:g}-{kept[-1]['generation']:g} plotted "
+          f"(--start {start}), best {max(r['best'] for r in kept):.6g}")
+    return kept
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--label", action="append", default=[], help="legend name, one per run")
     ap.add_argument("--panel", action="append", default=[], help="subplot name, one per run")
     ap.add_argument("--title", default="integrated stage: the best individual of every generation")
+    ap.add_argument("--start", type=int, default=0, metavar="G", help="plot generations G and later (default 0)")
     figlib.add_out_argument(ap, "fig3_5")
     a = ap.parse_args()
     outs = figlib.outputs(a, "fig3_5")
@@ -49,6 +61,8 @@ def main():
     for path, rows in runs:
         print(f"{figlib.PROG}: {path}: {len(rows)} generations, best {max(r['best'] for r in rows):.6g}, "
               f"last bonus {rows[-1]['best_bonus']:g} (without the caretaker {rows[-1]['best_bonus_auto']:g})")
+    if a.start:
+        runs = [(path, plotted(path, rows, a.start)) for path, rows in runs]
     panels = list(dict.fromkeys(a.panel)) if a.panel else [None]
     if a.panel:
         print(f"{figlib.PROG}: {len(panels)} panels: " + ", ".join(
@@ -78,7 +92,7 @@ def main():
         ax.grid(True, color="#eee")
         if a.panel:
             ax.set_title(panels[pi], fontsize=10)
-            ax.legend(loc="center right", fontsize=7, frameon=False)
+            ax.legend(loc="best", fontsize=7, frameon=False)
         else:
             ax.set_title(a.title, fontsize=10)
             ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)

@@ -287,7 +287,7 @@ $(OUT)/figures/.done: $(PRIMITIVES) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selfta
 	$(call FIG,fig_prim_fitness,$(PRIM_POPS:/population.genome=),fig3_1)
 	$(if $(filter chain,$(PROTOCOL)),$(call FIG,fig_chain,$(CHAIN_POPS:/population.genome=),fig_chain))
 	$(call FIG,fig_integration,$(OUT)/summary/integration.csv $(FIG3_3_ARGS),fig3_3)
-	$(foreach c,$(CONDS),$(call FIG,fig_int_fitness,$(SEEDS:%=$(OUT)/int-$(c)-s%),fig3_int_$(c));)
+	$(foreach c,$(CONDS),$(call FIG,fig_int_fitness,$(SEEDS:%=$(OUT)/int-$(c)-s%) --start 1,fig3_int_$(c));)
 	$(call FIG,fig_boxplot,$(OUT)/summary/robustness.csv --test robustness,fig3_4)
 	$(call FIG,fig_boxplot,$(OUT)/summary/generalisation.csv --test generalisation,fig3_9)
 	$(call FIG,fig_success_maps,$(OUT)/summary/generalisation-trials.csv,fig3_10)
