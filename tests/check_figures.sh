@@ -167,6 +167,20 @@ printf 'step,caretaker_word,selftalk_label\n0,-1,7\n' > "$tmp/w3.csv"
 refuses "fig3_12: a word out of range" "$tmp/w3.csv:2: selftalk_label 7 (expected -1 for none or 0-3" fig_words.py "$tmp/w3.csv"
 : > "$tmp/w4.csv"
 refuses "fig3_12: an empty file" "$tmp/w4.csv: empty (expected an ./apps/replay trace" fig_words.py "$tmp/w4.csv"
+
+# tools/best_run.py (Fig. 3.12's individual): the most successes; a tie goes to the lower run
+cat > "$tmp/b.csv" <<'CSV'
+test,condition,run,individual,successes,trials,excluded,open_jumped,run_label,success_rate,mean_steps_to_target,unstable,generation
+robustness,ST-CT,2,0,37,40,0,0,int-stct-s3,0.925,90,0,99
+robustness,ST-CT,0,0,30,40,0,0,int-stct-s1,0.75,90,0,99
+robustness,ST-CT,1,0,37,40,0,0,int-stct-s2,0.925,90,0,98
+robustness,ST,0,0,39,40,0,0,int-st-s1,0.975,90,0,99
+CSV
+[ "$("$PY" tools/best_run.py "$tmp/b.csv" --condition ST-CT 2>&1)" = "int-stct-s2 0 98" ] &&
+  [ "$("$PY" tools/best_run.py "$tmp/b.csv" --condition ST 2>&1)" = "int-st-s1 0 99" ] &&
+  ok "best_run: the most successes, ties the lower run" || ko "best_run" "$("$PY" tools/best_run.py "$tmp/b.csv" --condition ST-CT 2>&1)"
+"$PY" tools/best_run.py "$tmp/b.csv" > /dev/null 2> "$tmp/err" && ko "best_run: two conditions" ||
+  { grep -qF "$tmp/b.csv: conditions ST, ST-CT (expected one: give --condition)" "$tmp/err" && ok "best_run: two conditions refused" || ko "best_run: two conditions" "$(cat "$tmp/err")"; }
 refuses "an unknown output format" "$tmp/x.pdf: unknown output format (expected a name ending in .png or .svg)" fig_words.py "$FIG/trace_selftalk.csv" -o "$tmp/x.pdf"
 
 # ---- the same data gives the same SVG

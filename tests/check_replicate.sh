@@ -20,17 +20,30 @@ for f in prims-s1/population.genome prims-s2/population.genome chain-s1/populati
   posteval/integration/summary.csv int-stct-s1/population.genome int-ni-s2/population.genome \
   posteval/robustness-ct/summary.csv posteval/generalisation-st0/trials.csv \
   stats/table_3_1.txt stats/table_3_2.txt stats/table_3_3.txt stats/selftalk.csv \
-  figures/fig3_1.png figures/fig3_3.png figures/fig3_9.svg figures/fig3_10.png report.md; do
+  figures/fig3_1.png figures/fig3_3.png figures/fig3_9.svg figures/fig3_10.png \
+  figures/fig3_12_stct.png figures/fig3_12_st.svg report.md; do
   [ -s "$tmp/a/$f" ] || missing="$missing $f"
 done
 if [ -z "$missing" ]; then ok "every step's files"; else ko "every step's files" "missing:$missing"; fi
+# Fig. 3.12: the ST-CT run tools/best_run.py picks, its four types in self talk and with the caretaker
+w="$tmp/a/figures/fig3_12_stct.txt"
+pick=$(/usr/bin/python3 tools/best_run.py "$tmp/a/posteval/robustness-stct/summary.csv" | cut -d' ' -f1)
+if [ "$(grep -c "/words-stct/self-[0-3].csv: self talk: " "$w")" = 4 ] &&
+   [ "$(grep -c "/words-stct/care-[0-3].csv: caretaker: none 0-0, reach 1-" "$w")" = 4 ] &&
+   [ -n "$pick" ] && grep -qF "$pick's best" "$tmp/a/figures/fig3_12_stct.svg"; then
+  ok "Fig. 3.12: the best ST-CT run's four types, self talk and caretaker"
+else ko "Fig. 3.12" "pick '$pick': $(cat "$w")"; fi
 
 # report.md: every section, the thesis's numbers beside ours
 r="$tmp/a/report.md"
 sections=0
 for h in "## Primitive stages" "## Integration test" "## Integrated stage" "## Robustness test" \
-  "## Generalisation test" "## Self talk against"; do grep -qF "$h" "$r" && sections=$((sections + 1)); done
-if [ $sections = 6 ]; then ok "report.md has its six sections"; else ko "report.md sections" "$sections of 6"; fi
+  "## Generalisation test" "## Self talk against" "## Strategies"; do grep -qF "$h" "$r" && sections=$((sections + 1)); done
+if [ $sections = 7 ]; then ok "report.md has its seven sections"; else ko "report.md sections" "$sections of 7"; fi
+# its strategies table: the four types of each self-talking condition, the caretaker's words from reach
+if [ "$(grep -cE '^\| (ST-CT|ST) \| int-(stct|st)-s[12], generation [0-9]+ \| [0-3] \| .* \| (yes|no) \| reach' "$r")" = 8 ]; then
+  ok "report.md: Fig. 3.12's words, four types of ST-CT and ST"
+else ko "report.md strategies" "$(grep -A12 '## Strategies' "$r")"; fi
 # which primitives it took, and the chain stage's table: both runs, 2 generations, 2 chained trials
 if grep -qF 'Primitives: protocol `chain` (the default)' "$r" && grep -qF "### The chain stage" "$r" &&
    [ "$(grep -cE '^\| [12] \| 2 \| [0-9]+/16 \| [0-2]/2 \|$' "$r")" = 2 ]; then

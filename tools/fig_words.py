@@ -6,7 +6,7 @@
     ./apps/replay best.genome config.ini --trial K --out selftalk_K.csv          # self talk heard
     ./apps/replay best.genome config.ini --trial K --set integrated.words_odd=caretaker ... --out care_K.csv
     /usr/bin/python3 tools/fig_words.py selftalk_0.csv+care_0.csv selftalk_1.csv+care_1.csv ...
-        [--label NAME]... [--dt 0.05] [-o fig3_12.png]...
+        [--label NAME]... [--title TEXT] [--dt 0.05] [-o fig3_12.png]...
 
 A panel is one trace or several joined by '+'. Each trace gives one line: its caretaker words
 (column caretaker_word) when the caretaker spoke in it, otherwise its self-talk labels (column
@@ -48,12 +48,15 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("panels", nargs="+", help="TRACE.csv or TRACE.csv+TRACE.csv")
     ap.add_argument("--label", action="append", default=[], help="panel title, one per panel")
+    ap.add_argument("--title", help="the figure's title (e.g. the individual)")
     ap.add_argument("--dt", type=float, default=0.05, help="seconds per step (robot.control_dt)")
     figlib.add_out_argument(ap, "fig3_12")
     a = ap.parse_args()
     outs = figlib.outputs(a, "fig3_12")
     if a.label and len(a.label) != len(a.panels):
         figlib.die(f"{len(a.label)} --label for {len(a.panels)} panels (expected one per panel)")
+    if a.title:
+        print(f"{figlib.PROG}: title: {a.title}")
     panels = []
     for p in a.panels:
         lines = [(path,) + series(path) for path in p.split("+")]
@@ -77,6 +80,8 @@ def main():
         ax.grid(True, color="#eee")
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
     axes[-1][0].set_xlabel("time (s)")
+    if a.title:
+        fig.suptitle(a.title, fontsize=10)
     fig.tight_layout()
     figlib.save(plt, fig, outs)
 

@@ -282,7 +282,26 @@ $(OUT)/stats/%.txt: $(OUT)/summary/%.csv
 
 # ---- figures (tools/fig_*.py): PNG and SVG
 FIG = $(PYTHON) tools/$(1).py $(2) -o $(OUT)/figures/$(3).png -o $(OUT)/figures/$(3).svg
-$(OUT)/figures/.done: $(PRIMITIVES) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selftalk.csv
+
+# Fig. 3.12: the words of the best individual of ST-CT and of ST (the run whose best solved the
+# most robustness trials, ties the lower run: tools/best_run.py) in the integrated stage's four
+# trial types (trials 0-3 of its last generation, type = trial mod 4), in self talk and again
+# with the caretaker's words (replayed; the traces kept in figures/words-<cond>/, the words
+# printed into fig3_12_<cond>.txt)
+REPLAY := ./apps/replay
+WORDS_self := --set integrated.words_even=selftalk --set integrated.fitness_even=integrated
+WORDS_care := --set integrated.words_even=caretaker --set integrated.words_odd=caretaker
+FIG3_12 := $(CONDS0:%=$(OUT)/figures/fig3_12_%.png)
+$(OUT)/figures/fig3_12_%.png: $(OUT)/posteval/robustness-%/summary.csv $(INT_POPS)
+	@mkdir -p $(@D)/words-$*
+	set -- $$($(PYTHON) tools/best_run.py $<) && test $$# = 3 && \
+	  $(foreach k,0 1 2 3,$(foreach w,self care,$(REPLAY) $(OUT)/$$1/best.genome $(OUT)/$$1/config.ini \
+	    --generation $$3 --trial $(k) $(WORDS_$(w)) --out $(@D)/words-$*/$(w)-$(k).csv > /dev/null && )) \
+	  $(PYTHON) tools/fig_words.py $(foreach k,0 1 2 3,$(@D)/words-$*/self-$(k).csv+$(@D)/words-$*/care-$(k).csv) \
+	    $(foreach k,0 1 2 3,--label "type $(k)") --title "$$1's best, generation $$3" \
+	    -o $@ -o $(@:.png=.svg) > $(@:.png=.txt)
+
+$(OUT)/figures/.done: $(PRIMITIVES) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selftalk.csv $(FIG3_12)
 	@mkdir -p $(@D)
 	$(call FIG,fig_prim_fitness,$(PRIM_POPS:/population.genome=),fig3_1)
 	$(if $(filter chain,$(PROTOCOL)),$(call FIG,fig_chain,$(CHAIN_POPS:/population.genome=),fig_chain))

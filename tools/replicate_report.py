@@ -315,6 +315,52 @@ def section_selftalk(out, th):
     return lines + ["", "![Fig. 3.11](figures/fig3_11.png)", ""]
 
 
+WORD_RUN = re.compile(r"^fig_words: (\S+): (self talk|caretaker): (.*)$")
+
+
+def words_used(runs):
+    """the words of 'reach 0-12, grasp 13-13, ...' in order of first use"""
+    seen = []
+    for r in runs.split(", "):
+        w = r.split(" ")[0]
+        if w != "none" and w not in seen:
+            seen.append(w)
+    return seen
+
+
+def section_strategies(out):
+    """Fig. 3.12 (make replicate's fig3_12_<cond>: the best run's words in the four trial types,
+    as fig_words.py printed them)"""
+    lines = ["## Strategies (thesis §3.2.6, Fig. 3.12)", "",
+             "The thesis: the self-talking individuals of ST-CT and ST \"never use the *open* "
+             "instruction\"; some follow the caretaker's sequence, others shorten it.", "",
+             "| condition | individual | trial type | self talk: words in order of first use | "
+             "says *open* | the caretaker's words |", "|---|---|---|---|---|---|"]
+    for cond, name in (("stct", "ST-CT"), ("st", "ST")):
+        path = os.path.join(out, "figures", "fig3_12_%s.txt" % cond)
+        if not os.path.exists(path):
+            lines.append("| %s | (no fig3_12_%s.txt) | | | | |" % (name, cond))
+            continue
+        title = ""
+        by_type = {}
+        for line in open(path, encoding="utf-8"):
+            if line.startswith("fig_words: title: "):
+                title = line[len("fig_words: title: "):].strip().replace("'s best", "")
+            m = WORD_RUN.match(line.rstrip("\n"))
+            if not m:
+                continue
+            t = re.search(r"(self|care)-(\d)\.csv$", m.group(1))
+            if t:
+                by_type.setdefault(int(t.group(2)), {})[m.group(2)] = words_used(m.group(3))
+        for k in sorted(by_type):
+            st, ct = by_type[k].get("self talk", []), by_type[k].get("caretaker", [])
+            lines.append("| %s | %s | %d | %s | %s | %s |" % (
+                name, title, k, ", ".join(st), "yes" if "open" in st else "no", ", ".join(ct)))
+    lines += ["", "![Fig. 3.12, ST-CT](figures/fig3_12_stct.png)", "",
+              "![Fig. 3.12, ST](figures/fig3_12_st.png)", ""]
+    return lines
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("out")
@@ -364,6 +410,7 @@ def main():
                           "table_3_2.txt", ["fig3_9", "fig3_10"], "3.2", "A.2",
                           th["conditions"] + ["ST-CT0", "ST0"])
     lines += section_selftalk(a.out, th)
+    lines += section_strategies(a.out)
     report = a.report or os.path.join(a.out, "report.md")
     with open(report + ".tmp", "w") as f:
         f.write("\n".join(lines) + "\n")
