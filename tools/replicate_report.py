@@ -332,8 +332,10 @@ def section_strategies(out):
     """Fig. 3.12 (make replicate's fig3_12_<cond>: the best run's words in the four trial types,
     as fig_words.py printed them)"""
     lines = ["## Strategies (thesis §3.2.6, Fig. 3.12)", "",
-             "The thesis: the self-talking individuals of ST-CT and ST \"never use the *open* "
-             "instruction\"; some follow the caretaker's sequence, others shorten it.", "",
+             "The thesis (§3.2.6): the self talk of ST-CT run 7 and ST run 5 keeps the "
+             "caretaker's sequence with primitives of other lengths; ST-CT run 7's fluctuates "
+             "rapidly between two words before the next one settles; every individual \"never "
+             "uses the *open* instruction\".", "",
              "| condition | individual | trial type | self talk: words in order of first use | "
              "says *open* | the caretaker's words |", "|---|---|---|---|---|---|"]
     for cond, name in (("stct", "ST-CT"), ("st", "ST")):
