@@ -33,7 +33,7 @@
 
 PRESET ?= full
 # chain (the default): each primitive run continued by the chain stage (configs/chain_prim.cfg;
-# SPEC 12, docs/PROTOCOL.md), whose primitives chain (integration test median 29.5 of 40 on the
+# SPEC 12, docs/PROTOCOL.md), whose primitives chain (integration test median 30 of 40 on the
 # completed runs, the thesis's 25); thesis: the thesis's primitive stages alone (their
 # integration test: 0 of 1200), so that its result can be reported beside
 PROTOCOL ?= chain
