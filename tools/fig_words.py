@@ -82,7 +82,9 @@ def main():
     axes[-1][0].set_xlabel("time (s)")
     if a.title:
         fig.suptitle(a.title, fontsize=10)
-    fig.tight_layout()
+        fig.tight_layout(rect=(0, 0, 1, 1 - 0.35 / fig.get_figheight()))  # the title above the panels
+    else:
+        fig.tight_layout()
     figlib.save(plt, fig, outs)
 
 
