@@ -78,6 +78,7 @@ static double bench_trial(const stProtocol *p, stWorkspace *ws, const stNetParam
  * points by pair kind (stDynInfo) */
 typedef struct dynStats {
   long substeps, ode_substeps, unstable, redos, aredos, hinge_substeps;
+  long lcps, lcp_reduced, lcp_rows, lcp_unbounded; /* dynamics.lcp = schur */
   long points[ST_DYN_PAIR_COUNT];
 } dynStats;
 
@@ -90,6 +91,10 @@ static void stats_add(dynStats *st, const stWorld *w) {
   st->redos += in.motor_redos;
   st->aredos += in.adaptive_redos;
   st->hinge_substeps += in.dyn_hinge_substeps;
+  st->lcps += in.lcp_solves;
+  st->lcp_reduced += in.lcp_reduced;
+  st->lcp_rows += in.lcp_reduced_rows;
+  st->lcp_unbounded += in.lcp_unbounded_rows;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) st->points[k] += in.contact_points[k];
 }
 
@@ -101,6 +106,10 @@ static void stats_merge(dynStats *to, const dynStats *from) {
   to->redos += from->redos;
   to->aredos += from->aredos;
   to->hinge_substeps += from->hinge_substeps;
+  to->lcps += from->lcps;
+  to->lcp_reduced += from->lcp_reduced;
+  to->lcp_rows += from->lcp_rows;
+  to->lcp_unbounded += from->lcp_unbounded;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) to->points[k] += from->points[k];
 }
 
@@ -185,6 +194,13 @@ static void print_rows(const char *name, const dynStats *st) {
          6.0 * (double)st->hinge_substeps / ode,
          6.0 * (double)st->hinge_substeps / ode + 3.0 * (double)all / ode,
          (double)st->redos / ode, (double)st->aredos / ode);
+  if (st->lcps) { /* dynamics.lcp = schur: what the reduction took */
+    const double red = st->lcp_reduced > 0 ? (double)st->lcp_reduced : 1.0;
+    printf("lcp scenario=%s reduced=%.0f%% rows_per_reduced=%.1f unbounded=%.1f bounded=%.1f\n",
+           name, 100.0 * (double)st->lcp_reduced / (double)st->lcps,
+           (double)st->lcp_rows / red, (double)st->lcp_unbounded / red,
+           (double)(st->lcp_rows - st->lcp_unbounded) / red);
+  }
 }
 
 /* T dynamic trials on the given threads; returns the elapsed time, fills per_trial */

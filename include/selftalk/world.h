@@ -125,6 +125,7 @@ const char *st_shape_kind_name(int kind);
  * posture, object, target, seed and commands, bit for bit. */
 
 enum { ST_DYN_QUICKSTEP = 0, ST_DYN_STEP, ST_DYN_SOLVER_COUNT }; /* dynamics.solver */
+enum { ST_DYN_LCP_DENSE = 0, ST_DYN_LCP_SCHUR, ST_DYN_LCP_COUNT };  /* dynamics.lcp */
 
 /* dynamics.adaptive_limit's default (the key table's), the only value it takes while
  * dynamics.adaptive_joints is empty */
@@ -158,6 +159,7 @@ typedef struct stDynDef {
   char adaptive_joints[ST_CONFIG_STR_MAX]; /* comma-separated joint names after kinematic_joints:
                                 exact servos while the torque they need is within their limit */
   double adaptive_limit;     /* ... times the motor's torque limit (ST_DYN_ADAPTIVE_LIMIT) */
+  int lcp;                   /* ST_DYN_LCP_DENSE or ST_DYN_LCP_SCHUR (solver step only) */
   char kinematic_joints[ST_CONFIG_STR_MAX]; /* comma-separated joint names: exact servos whose
                                 links are kinematic bodies (a prefix of the chain) */
 } stDynDef;
@@ -259,6 +261,10 @@ typedef struct stDynInfo {
   long dyn_hinge_substeps; /* the hinges in ODE's step (not exact servos), summed over those
                               sub-steps: 6 LCP rows each */
   int robot_in_ode;     /* the robot is in ODE's step now (near the table or the object) */
+  long lcp_solves;      /* dynamics.lcp = schur: the LCPs of ODE's steps since the last reset */
+  long lcp_reduced;     /* ... of which solved by the reduction (the rest had < 2 unbounded rows) */
+  long lcp_reduced_rows; /* the rows of the reduced ones ... */
+  long lcp_unbounded_rows; /* ... and of those, the unbounded rows the reduction eliminated */
   long contact_points[ST_DYN_PAIR_COUNT]; /* contact joints made since the last reset, by pair
                                              (ST_DYN_PAIR_*): each is 3 rows of ODE's LCP (1
                                              with zero friction), beside 6 per hinge in ODE */

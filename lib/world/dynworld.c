@@ -35,6 +35,7 @@
 
 #include "core/internal.h"
 #include "model/model_internal.h"
+#include "world/ode_lcp.h"
 #include "world/ode_util.h"
 #include "selftalk/rng.h"
 #include "world/world_backend.h"
@@ -118,6 +119,7 @@ typedef struct dynInternal {
   int ncfb;
   int kin_static_hit;       /* lowest adaptive kinematic body touching the table or the floor
                                (no contact joint can act there), or nhinge for none */
+  stLcp *lcp;               /* dynamics.lcp = schur: the reduction's scratch; else NULL */
   long adapt_redos;         /* sub-steps redone because an adaptive joint needed more torque */
   double (*saved)[13];      /* body states before the current sub-step */
   int unstable;
@@ -204,6 +206,7 @@ void st_dyn_def_from_config(const stConfig *c, stDynDef *d) {
   d->motor_active_set = c->dynamics_motor_active_set;
   snprintf(d->adaptive_joints, sizeof d->adaptive_joints, "%s", c->dynamics_adaptive_joints);
   d->adaptive_limit = c->dynamics_adaptive_limit;
+  d->lcp = c->dynamics_lcp;
   snprintf(d->kinematic_joints, sizeof d->kinematic_joints, "%s", c->dynamics_kinematic_joints);
 }
 
@@ -255,6 +258,11 @@ static int check_def(const stDynDef *d, double dt, int *nsub, char *err, size_t 
   if (d->motor_active_set && d->solver != ST_DYN_STEP)
     BAD("dynamics.motor_active_set: on with solver quickstep (expected solver step: it acts on "
         "the direct solver's LCP only)");
+  if (d->lcp < 0 || d->lcp >= ST_DYN_LCP_COUNT)
+    BAD("dynamics.lcp: %d (expected dense or schur)", d->lcp);
+  if (d->lcp == ST_DYN_LCP_SCHUR && d->solver != ST_DYN_STEP)
+    BAD("dynamics.lcp: schur with solver quickstep (expected solver step: quickstep solves no "
+        "LCP of its own)");
   if (!isfinite(d->floor_z)) BAD("dynamics.floor_z: %g (expected a finite height)", d->floor_z);
   if (!(d->unstable_speed > 0.0) || !(d->unstable_spin > 0.0) || !(d->limit_tolerance >= 0.0))
     BAD("dynamics.unstable_speed / unstable_spin / limit_tolerance_deg: %g / %g / %g (expected "
@@ -645,6 +653,17 @@ stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz
   }
   if (!alloc_arrays(d, w->robot->model) || !create_ode_world(d))
     return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
+  if (def->lcp == ST_DYN_LCP_SCHUR) {
+    if (!st__lcp_interposed())
+      return st__errf(err, errsz, "dynamics.lcp: schur, but ODE's calls of dxSolveLCP do not "
+                      "reach the library's in this build (expected dense)"), ST_ERR_RANGE;
+    if (!(d->lcp = st__lcp_create()))
+      return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
+    /* room in ODE's step arena for the check mode's second solve (lib/world/ode_lcp.h): the
+     * steps' own need is far below 1 MB */
+    const dWorldStepReserveInfo reserve = {sizeof reserve, 2.0f, 1u << 20};
+    dWorldSetStepMemoryReservationPolicy(d->world, &reserve);
+  }
   stStatus st = build(w, d, err, errsz);
   if (st) return st;
   d->obj_table = 1;
@@ -676,6 +695,7 @@ static void dyn_destroy(stWorld *w) {
   free(d->cfb);
   free(d->cfb_body);
   free(d->cfb_side);
+  st__lcp_destroy(d->lcp);
   free(d);
   w->internal_ = NULL;
 }
@@ -1088,6 +1108,7 @@ static void reset_counters(dynInternal *d) {
   d->dyn_substeps = 0;
   d->dyn_hinge_substeps = 0;
   memset(d->points, 0, sizeof d->points);
+  if (d->lcp) st__lcp_stats_reset(d->lcp);
   d->unstable = 0;
   d->reason[0] = 0;
   d->rand_state = (uint32_t)(st_rng_mix64(d->seed ^ 0x6f64655f72616e64ull) >> 32);
@@ -1384,7 +1405,9 @@ static int ode_substep(stWorld *w, stContacts *c) {
       ok = dWorldQuickStep(d->world, d->h);
       d->rand_state = st__ode_rand_get();
     } else {
+      if (d->lcp) st__lcp_begin(d->lcp);
       ok = dWorldStep(d->world, d->h);
+      if (d->lcp) st__lcp_end();
     }
     const unsigned long msgs = st__ode_messages() - msg0;
     dJointGroupEmpty(d->cgroup);
@@ -1555,6 +1578,12 @@ static void dyn_info(const stWorld *w, stDynInfo *info) {
   info->dyn_substeps = d->dyn_substeps;
   info->dyn_hinge_substeps = d->dyn_hinge_substeps;
   info->robot_in_ode = d->robot_dyn;
+  stLcpStats ls = {0, 0, 0, 0, 0};
+  if (d->lcp) st__lcp_stats(d->lcp, &ls);
+  info->lcp_solves = ls.calls;
+  info->lcp_reduced = ls.reduced;
+  info->lcp_reduced_rows = ls.rows;
+  info->lcp_unbounded_rows = ls.unbounded;
   memcpy(info->contact_points, d->points, sizeof d->points);
 }
 

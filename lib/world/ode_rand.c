@@ -71,3 +71,5 @@ void st__ode_messages_install(void) {
 }
 
 unsigned long st__ode_messages(void) { return g_messages; }
+
+void st__ode_messages_rewind(unsigned long to) { g_messages = to; }

@@ -24,5 +24,8 @@ unsigned long st__ode_rand_calls(void);
  * count. */
 void st__ode_messages_install(void);
 unsigned long st__ode_messages(void);
+/* Sets the count back to an earlier reading (lib/world/ode_lcp.c's check mode: the warnings of
+ * the solve it compares are not the step's). */
+void st__ode_messages_rewind(unsigned long to);
 
 #endif
