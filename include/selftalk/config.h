@@ -193,7 +193,7 @@ extern "C" {
   BOOL(dynamics, motor_active_set, 0, "1 (solver step): unsaturated hinge motors enter the LCP unbounded, checked after the step, redone bounded if one saturates: the same solution up to rounding (PROTOCOL, Speed)") \
   STR(dynamics, adaptive_joints, "", "the hinges after kinematic_joints, in chain order, that are exact servos while the torque they need stays within adaptive_limit of theirs, else motors (PROTOCOL, Speed); empty: none") \
   REAL(dynamics, adaptive_limit, 0.5, 0.01, 1.0, "adaptive_joints: an exact servo needing more than this times its motor's torque limit becomes a motor again, and a servo again below half of it") \
-  ENUM(dynamics, lcp, 0, "dense|schur", "solver step: how ODE's LCP is solved: dense, ODE's Dantzig on the whole matrix; schur, the unbounded joint rows eliminated first by a sparse factorisation, ODE's Dantzig on the rest: the same solution up to rounding (PROTOCOL, Speed)") \
+  ENUM(dynamics, lcp, 0, "dense|schur", "solver step: dense, ODE's Dantzig on the whole LCP; schur, the joints' unbounded rows eliminated first (sparse), ODE's on the rest: the same solution up to rounding (PROTOCOL, Speed)") \
   /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */ \
   INT(posteval, integration_top, 10, 1, 100000, "integration test: genotypes taken from the top of each primitive run's population (thesis 2.10.1: the top 10)") \
   INT(posteval, integration_trials, 40, 1, 100000, "integration test: caretaker-guided trials per genotype; trial i has type k = i mod 4: reach posture k, object position k, target k mod 2, fresh offsets (thesis 2.10.1)") \
