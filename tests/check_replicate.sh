@@ -223,12 +223,12 @@ $REP OUT="$tmp/c" PROTOCOL=mine > /dev/null 2> "$tmp/e"
 if [ $? != 0 ] && grep -q "PROTOCOL=mine: expected chain or thesis" "$tmp/e"; then
   ok "an unknown protocol is refused"; else ko "unknown protocol" "$(cat "$tmp/e")"; fi
 
-# the cost, before anything runs (target cost, tools/replicate_cost.py): a row per step and a
-# total, from costs measured once (OUT/cost/costs.csv) and taken from there the second time
+# the cost, before anything runs (target cost, tools/replicate_cost.py): a row per step, a
+# total row and a last line, from costs measured once (OUT/cost/costs.csv) and taken from there the second time
 COST="$REP EVAL_COST=$BUILD/eval_cost COST_SAMPLE=1"
 rows='^prims: simple-prim |^prims: main-prim |^integration test |^integrated (ST-CT|ST|CT|NI) |^robustness |^generalisation |^stats, figures, report |^total '
 if $COST cost OUT="$tmp/p" PROTOCOL=thesis > "$tmp/p.out" 2> "$tmp/p.err" &&
-   [ "$(grep -cE "$rows" "$tmp/p.out")" = 11 ] && grep -q "^Expected: .* core-hours, .* hours on 1 thread; at most" "$tmp/p.out" &&
+   [ "$(grep -cE "$rows" "$tmp/p.out")" = 12 ] && grep -q "^Expected: .* core-hours, .* hours on 1 thread; at most" "$tmp/p.out" &&
    grep -q "measuring what one evaluation costs" "$tmp/p.err" && grep -q "measured now on host" "$tmp/p.out" &&
    [ "$(grep -c "^$(hostname)," "$tmp/p/cost/costs.csv")" = 17 ]; then
   ok "cost: a row per step and a total, 17 kinds measured"
@@ -236,7 +236,7 @@ else ko "cost" "$(cat "$tmp/p.err"; head -20 "$tmp/p.out")"; fi
 cp "$tmp/p/cost/costs.csv" "$tmp/costs1.csv"
 if $COST cost OUT="$tmp/p" PROTOCOL=thesis > "$tmp/p2.out" 2> "$tmp/p.err" && [ ! -s "$tmp/p.err" ] &&
    grep -q "measured earlier on host" "$tmp/p2.out" && cmp -s "$tmp/p/cost/costs.csv" "$tmp/costs1.csv" &&
-   [ "$(grep -cE "$rows" "$tmp/p2.out")" = 11 ]; then
+   [ "$(grep -cE "$rows" "$tmp/p2.out")" = 12 ]; then
   ok "cost: the second time from OUT/cost/costs.csv, nothing measured"
 else ko "cost, cached" "$(cat "$tmp/p.err")"; fi
 if $COST cost OUT="$tmp/p" PROTOCOL=thesis REMEASURE=1 > "$tmp/p3.out" 2> "$tmp/p.err" &&
@@ -244,7 +244,7 @@ if $COST cost OUT="$tmp/p" PROTOCOL=thesis REMEASURE=1 > "$tmp/p3.out" 2> "$tmp/
   ok "cost: REMEASURE=1 measures again"
 else ko "cost, REMEASURE=1" "$(cat "$tmp/p.err")"; fi
 if $COST cost OUT="$tmp/p" > "$tmp/p4.out" 2> "$tmp/p.err" &&
-   [ "$(grep -cE "$rows|^chain: replace " "$tmp/p4.out")" = 12 ] &&
+   [ "$(grep -cE "$rows|^chain: replace " "$tmp/p4.out")" = 13 ] &&
    grep -q "chain replace individual .* of data/evolved/chain_candidates" "$tmp/p4.out" &&
    ! grep -q "^chain: extra\|chain extra individual" "$tmp/p4.out"; then
   # the tiny preset's 2 generations are all within the first 60, which replace
@@ -268,6 +268,7 @@ assume=(--assume simple-prim=0.002 --assume main-prim=0.5 --assume integration=0
 price() { python3 tools/replicate_cost.py --preset full --runs 10 --out "$tmp/q" --eval-cost "$BUILD/eval_cost" "${assume[@]}" "$@"; }
 if price --protocol thesis --threads 2 > "$tmp/q.out" 2>&1 &&
    grep -qx "Expected: 83.8 core-hours, 41.9 hours on 2 threads; at most 278 core-hours, 139 hours." "$tmp/q.out" &&
+   [ "$(tail -1 "$tmp/q.out")" = "total 83.8 core-hours (expected; at most 278), 41.9 hours on 2 threads" ] &&
    grep -qE "^prims: main-prim +10 +0.5 +97 +97,000 +13.5 +6.7 +\| +1500 +208 +104$" "$tmp/q.out" &&
    grep -qE "^generalisation +6 +0.1 +- +117,600 +3.3 +1.6 +\| +- +3.3 +1.6$" "$tmp/q.out" &&
    price --protocol thesis --threads 64 > "$tmp/q64.out" &&

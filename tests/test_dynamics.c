@@ -588,6 +588,20 @@ static int held_like_default(stWorld *w[2], const stScene *s, int k) {
   return memcmp(obj[0], obj[1], sizeof obj[0]) != 0;
 }
 
+/* held_like_default from every move posture, the key set on in w[1]: it acts (not bit for bit
+ * the default) */
+static void holds_like_default(const char *const *on) {
+  const stScene *s = move_scene();
+  stWorld *w[2] = {make_world(s, NULL), make_world(s, on)};
+  CU_ASSERT_PTR_NOT_NULL_FATAL(w[0]);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(w[1]);
+  int differs = 0;
+  for (int k = 0; k < ST_NPOSTURE; k++) differs |= held_like_default(w, s, k);
+  CU_ASSERT(differs);
+  st_world_destroy(w[0]);
+  st_world_destroy(w[1]);
+}
+
 /* dynamics.motor_active_set: refused out of range and with quickstep; on, it acts (the sub-steps
  * with the robot in ODE are solved otherwise: not bit for bit the default's) but gives the same
  * physics up to rounding: from each move posture the ball stays in the hand as with the key
@@ -611,15 +625,7 @@ static void test_motor_active_set(void) {
   st_world_destroy(bad);
 
   static const char *const on[] = {"dynamics.motor_active_set=1", NULL};
-  const stScene *s = move_scene();
-  stWorld *w[2] = {make_world(s, NULL), make_world(s, on)};
-  CU_ASSERT_PTR_NOT_NULL_FATAL(w[0]);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(w[1]);
-  int differs = 0;
-  for (int k = 0; k < ST_NPOSTURE; k++) differs |= held_like_default(w, s, k);
-  CU_ASSERT(differs); /* it acts */
-  st_world_destroy(w[0]);
-  st_world_destroy(w[1]);
+  holds_like_default(on);
 
   reset_equals_fresh(on);
 }
@@ -860,15 +866,7 @@ static void test_lcp_schur(void) {
               diff, warned);
   }
 
-  const stScene *s = move_scene();
-  stWorld *w[2] = {make_world(s, NULL), make_world(s, on)};
-  CU_ASSERT_PTR_NOT_NULL_FATAL(w[0]);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(w[1]);
-  int differs = 0;
-  for (int k = 0; k < ST_NPOSTURE; k++) differs |= held_like_default(w, s, k);
-  CU_ASSERT(differs); /* it acts */
-  st_world_destroy(w[0]);
-  st_world_destroy(w[1]);
+  holds_like_default(on);
 
   detResult a[NDET], b[NDET];
   CU_ASSERT_EQUAL_FATAL(run_threads(on, 1, a), NDET);

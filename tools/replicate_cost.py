@@ -388,6 +388,8 @@ def table(a, meter, steps, costs, notes, threads):
                "generations (~0.1 s each), other load on the machine. A few genotypes were "
                "measured: costs vary 2-3x between individuals and more between trials." % ts)
     out += [textwrap.fill(x, 100, subsequent_indent="  ") for x in notes]
+    out.append("total %s core-hours (expected; at most %s), %s hours on %s"
+               % (hours(tot[0]), hours(tot[2]), hours(tot[1]), ts))  # last: for scripts
     return "\n".join(out)
 
 
