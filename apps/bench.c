@@ -78,7 +78,7 @@ static double bench_trial(const stProtocol *p, stWorkspace *ws, const stNetParam
  * points by pair kind (stDynInfo) */
 typedef struct dynStats {
   long substeps, ode_substeps, unstable, redos, aredos, hinge_substeps;
-  long lcps, lcp_reduced, lcp_rows, lcp_unbounded; /* dynamics.lcp = schur */
+  long lcps, lcp_reduced, lcp_rows, lcp_unbounded, lcp_orders; /* dynamics.lcp = schur */
   long points[ST_DYN_PAIR_COUNT];
 } dynStats;
 
@@ -95,6 +95,7 @@ static void stats_add(dynStats *st, const stWorld *w) {
   st->lcp_reduced += in.lcp_reduced;
   st->lcp_rows += in.lcp_reduced_rows;
   st->lcp_unbounded += in.lcp_unbounded_rows;
+  st->lcp_orders += in.lcp_orderings;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) st->points[k] += in.contact_points[k];
 }
 
@@ -110,6 +111,7 @@ static void stats_merge(dynStats *to, const dynStats *from) {
   to->lcp_reduced += from->lcp_reduced;
   to->lcp_rows += from->lcp_rows;
   to->lcp_unbounded += from->lcp_unbounded;
+  to->lcp_orders += from->lcp_orders;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) to->points[k] += from->points[k];
 }
 
@@ -196,10 +198,10 @@ static void print_rows(const char *name, const dynStats *st) {
          (double)st->redos / ode, (double)st->aredos / ode);
   if (st->lcps) { /* dynamics.lcp = schur: what the reduction took */
     const double red = st->lcp_reduced > 0 ? (double)st->lcp_reduced : 1.0;
-    printf("lcp scenario=%s reduced=%.0f%% rows_per_reduced=%.1f unbounded=%.1f bounded=%.1f\n",
-           name, 100.0 * (double)st->lcp_reduced / (double)st->lcps,
+    printf("lcp scenario=%s reduced=%.0f%% rows_per_reduced=%.1f unbounded=%.1f bounded=%.1f "
+           "orders_computed=%.1f%%\n", name, 100.0 * (double)st->lcp_reduced / (double)st->lcps,
            (double)st->lcp_rows / red, (double)st->lcp_unbounded / red,
-           (double)(st->lcp_rows - st->lcp_unbounded) / red);
+           (double)(st->lcp_rows - st->lcp_unbounded) / red, 100.0 * (double)st->lcp_orders / red);
   }
 }
 

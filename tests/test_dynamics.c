@@ -588,6 +588,20 @@ static int held_like_default(stWorld *w[2], const stScene *s, int k) {
   return memcmp(obj[0], obj[1], sizeof obj[0]) != 0;
 }
 
+/* the settings (valid keys) make world creation fail with an error naming needle */
+static void refused(const char *const *set, const char *needle) {
+  stConfig cfg;
+  st_config_default(&cfg);
+  char err[512];
+  for (int i = 0; set[i]; i++) CU_ASSERT_FATAL(st_config_set(&cfg, set[i], err, sizeof err) == 0);
+  stDynDef def;
+  st_dyn_def_from_config(&cfg, &def);
+  stWorld *bad = NULL;
+  CU_ASSERT(st_world_create_dynamic(robot(), &g_scene, &def, &bad, err, sizeof err) != ST_OK);
+  ST_ASSERT_CONTAINS(err, needle);
+  st_world_destroy(bad);
+}
+
 /* held_like_default from every move posture, the key set on in w[1]: it acts (not bit for bit
  * the default) */
 static void holds_like_default(const char *const *on) {
@@ -613,16 +627,7 @@ static void test_motor_active_set(void) {
   CU_ASSERT(st_config_set(&cfg, "dynamics.motor_active_set=2", err, sizeof err) != 0);
   static const char *const quick[] = {"dynamics.motor_active_set=1", "dynamics.solver=quickstep",
                                       NULL};
-  stRobot *r = robot();
-  CU_ASSERT_PTR_NOT_NULL_FATAL(r);
-  CU_ASSERT_FATAL(st_config_set(&cfg, quick[0], err, sizeof err) == 0);
-  CU_ASSERT_FATAL(st_config_set(&cfg, quick[1], err, sizeof err) == 0);
-  stDynDef def;
-  st_dyn_def_from_config(&cfg, &def);
-  stWorld *bad = NULL;
-  CU_ASSERT(st_world_create_dynamic(r, &g_scene, &def, &bad, err, sizeof err) != ST_OK);
-  ST_ASSERT_CONTAINS(err, "motor_active_set");
-  st_world_destroy(bad);
+  refused(quick, "motor_active_set");
 
   static const char *const on[] = {"dynamics.motor_active_set=1", NULL};
   holds_like_default(on);
@@ -834,14 +839,8 @@ static void test_lcp_schur(void) {
   st_config_default(&cfg);
   char err[512];
   CU_ASSERT(st_config_set(&cfg, "dynamics.lcp=sparse", err, sizeof err) != 0);
-  CU_ASSERT_FATAL(st_config_set(&cfg, "dynamics.lcp=schur", err, sizeof err) == 0);
-  CU_ASSERT_FATAL(st_config_set(&cfg, "dynamics.solver=quickstep", err, sizeof err) == 0);
-  stDynDef def;
-  st_dyn_def_from_config(&cfg, &def);
-  stWorld *bad = NULL;
-  CU_ASSERT(st_world_create_dynamic(r, &g_scene, &def, &bad, err, sizeof err) != ST_OK);
-  ST_ASSERT_CONTAINS(err, "dynamics.lcp");
-  st_world_destroy(bad);
+  static const char *const quick[] = {"dynamics.lcp=schur", "dynamics.solver=quickstep", NULL};
+  refused(quick, "dynamics.lcp");
 
   static const char *const on[] = {"dynamics.lcp=schur", NULL};
   static const char *const mas[] = {"dynamics.lcp=schur", "dynamics.motor_active_set=1", NULL};

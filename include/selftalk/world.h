@@ -265,6 +265,8 @@ typedef struct stDynInfo {
   long lcp_reduced;     /* ... of which solved by the reduction (the rest had < 2 unbounded rows) */
   long lcp_reduced_rows; /* the rows of the reduced ones ... */
   long lcp_unbounded_rows; /* ... and of those, the unbounded rows the reduction eliminated */
+  long lcp_orderings;   /* ... and how many of them computed a fill-reducing order (the others
+                           found theirs among the last few patterns') */
   long contact_points[ST_DYN_PAIR_COUNT]; /* contact joints made since the last reset, by pair
                                              (ST_DYN_PAIR_*): each is 3 rows of ODE's LCP (1
                                              with zero friction), beside 6 per hinge in ODE */

@@ -249,7 +249,8 @@ static void min_degree(stLcp *s, unsigned nu, unsigned words, stLcpOrder *o) {
   memcpy(adj, s->pat, (size_t)nu * words * sizeof *adj);
   for (unsigned i = 0; i < nu; i++) /* the other half */
     for (unsigned j = 0; j < nu; j++)
-      if (bit(s->pat + (size_t)i * words, j)) adj[(size_t)j * words + i / 64] |= (uint64_t)1 << (i % 64);
+      if (bit(s->pat + (size_t)i * words, j))
+        adj[(size_t)j * words + i / 64] |= (uint64_t)1 << (i % 64);
   memset(alive, 0, words * sizeof *alive);
   for (unsigned i = 0; i < nu; i++) alive[i / 64] |= (uint64_t)1 << (i % 64);
   for (unsigned i = 0; i < nu; i++) deg[i] = degree(adj + (size_t)i * words, alive, words);
@@ -306,9 +307,9 @@ static const stLcpOrder *ordering(stLcp *s, unsigned nu, unsigned words) {
 /* ---- A_UU = L D L^T in that order --------------------------------------------------------- */
 
 /* M (nu x nu, lower triangle, row-major) holds A_UU permuted, then L below the diagonal and D
- * on it; Lv holds L's columns packed as the order's lrows (for the solves). Right-looking over L's structure (the order's lrows): the work is the factor's, not
- * n^3/6. Returns 0 on a pivot that is not positive (ODE's matrix is positive definite: CFM >
- * 0). */
+ * on it; Lv holds L's columns packed as the order's lrows (for the solves). Right-looking over
+ * L's structure: the work is the factor's, not n^3/6. Returns 0 on a pivot that is not
+ * positive (ODE's matrix is positive definite: CFM > 0). */
 static int factor(stLcp *s, const double *A, unsigned skip, unsigned nu) {
   double *M = s->M;
   const stLcpOrder *o = s->ord;
@@ -529,27 +530,10 @@ void st__lcp_entry(void *arena, unsigned n, double *A, double *bx, double *w, un
 static pthread_once_t g_check_once = PTHREAD_ONCE_INIT;
 static int g_interposed;
 
-/* one step of a powered hinge: ODE solves an LCP of 6 rows, through this file if at all */
 static void check_interposed(void) {
-  st__ode_init();
-  dWorldID wd = dWorldCreate();
-  dThreadingImplementationID th = dThreadingAllocateSelfThreadedImplementation();
-  if (th) dWorldSetStepThreadingImplementation(wd, dThreadingImplementationGetFunctions(th), th);
-  dBodyID b = dBodyCreate(wd);
-  dMass m;
-  dMassSetSphereTotal(&m, 1.0, 0.1);
-  dBodySetMass(b, &m);
-  dBodySetPosition(b, 0.0, 0.0, -0.2);
-  dJointID j = dJointCreateHinge(wd, 0);
-  dJointAttach(j, b, 0);
-  dJointSetHingeAnchor(j, 0.0, 0.0, 0.0);
-  dJointSetHingeAxis(j, 1.0, 0.0, 0.0);
-  dJointSetHingeParam(j, dParamFMax, 1.0);
   const unsigned long before = g_entries;
-  dWorldStep(wd, 0.01);
+  st__ode_probe_step(0);
   g_interposed = g_entries > before;
-  dWorldDestroy(wd);
-  if (th) dThreadingFreeImplementation(th);
 }
 
 int st__lcp_interposed(void) {

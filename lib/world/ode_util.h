@@ -10,6 +10,11 @@
  * calling thread (ODE requires it of every thread that calls it). */
 void st__ode_init(void);
 
+/* One step (quickstep when quickstep is set, else step) of a world of two bodies hanging from
+ * powered hinges: 12 constraint rows, 2 of them bounded. For the checks that ODE's calls reach
+ * the library's definitions (lib/world/ode_rand.c, lib/world/ode_lcp.c). */
+void st__ode_probe_step(int quickstep);
+
 /* The calling thread's replacement of ODE's random generator (lib/world/ode_rand.c): dRand,
  * dRandInt, dRandReal, dRandGetSeed and dRandSetSeed are defined by the library over one
  * 32-bit state per thread, so that every world can load its own state before a quickstep
