@@ -91,6 +91,32 @@ if python3 tools/replicate_report.py "$tmp/h" --preset tiny --runs 2 -o "$tmp/h.
   ok "report.md: the thesis's counts of 3.2 beside ours (by hand)"
 else ko "report.md, the counts of 3.2" "$(grep -A8 'as the thesis counts' "$tmp/h.md")"; fi
 
+# interim: the robustness test of the integrated runs complete so far, on a copy with three of
+# them unfinished (ST seed 2, NI both): the other five, each with the same trials and successes
+# as the study's own robustness step gave it
+cp -r "$tmp/a" "$tmp/i" && rm -rf "$tmp/i/interim" &&
+  rm "$tmp/i/int-st-s2/population.genome" "$tmp/i/int-ni-s1/population.genome" "$tmp/i/int-ni-s2/population.genome"
+rows() { # SUMMARY.csv...: run_label,condition,successes,trials per row, sorted
+  awk -F, 'FNR == 1 { for (i = 1; i <= NF; i++) h[$i] = i; next }
+    { print $h["run_label"] "," $h["condition"] "," $h["successes"] "," $h["trials"] }' "$@" | sort; }
+st1() { # TRIALS.csv: ST seed 1's trials, all but the run index (its place among the runs given)
+  awk -F, 'FNR == 1 { for (i = 1; i <= NF; i++) h[$i] = i; next }
+    $h["run_label"] == "int-st-s1" { $h["run"] = ""; print }' "$1"; }
+want=$(rows "$tmp"/a/posteval/robustness-{stct,st,ct}/summary.csv | grep -v '^int-st-s2,')
+if $REP interim OUT="$tmp/i" > "$tmp/in.out" 2> "$tmp/in.err" &&
+   grep -qF "(stct 2 st 1 ct 2)" "$tmp/in.out" && [ "$(rows "$tmp/i/interim/robustness.csv")" = "$want" ] &&
+   [ "$(echo "$want" | wc -l)" = 5 ] && [ ! -e "$tmp/i/interim.tmp" ] &&
+   grep -qF "| ST-CT | - |" "$tmp/i/interim/table_3_1.txt" && ! grep -q "| NI |" "$tmp/i/interim/table_3_1.txt" &&
+   [ "$(st1 "$tmp/a/posteval/robustness-st/trials.csv")" = "$(st1 "$tmp/i/interim/robustness-st/trials.csv")" ] &&
+   [ "$(st1 "$tmp/a/posteval/robustness-st/trials.csv" | wc -l)" = 4 ]; then
+  ok "interim: the complete runs' robustness, as the study's step gives it, Table 3.1 of them"
+else ko "interim" "$(cat "$tmp/in.out" "$tmp/in.err")"; fi
+rm "$tmp"/i/int-*/population.genome
+if $REP interim OUT="$tmp/i" > /dev/null 2> "$tmp/e"; then ko "interim with no complete run" "exit 0"
+elif grep -qF "interim: no integrated run in $tmp/i is complete yet" "$tmp/e" && [ -d "$tmp/i/interim" ]; then
+  ok "interim with no complete run is refused, the last interim kept"
+else ko "interim with no complete run" "$(cat "$tmp/e")"; fi
+
 # killed while its integrated runs evolve, then started again: the same files
 setsid $REP OUT="$tmp/b" > "$tmp/b.out" 2>&1 &
 pid=$!

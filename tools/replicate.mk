@@ -9,6 +9,7 @@
 #   make -f tools/replicate.mk status [the same variables]   what is done and left, while it runs
 #   make replicate SET='section.key=value ...'   settings for every evolve and posteval step
 #   make -f tools/replicate.mk snapshot|restore OUT=DIR SNAPSHOT=DIR    copy it while it runs
+#   make -f tools/replicate.mk interim [the same variables]  robustness of the runs done so far
 #
 # Steps and their files (under OUT):
 #   prims       prims-s<N>/population.genome       configs/prims.cfg, seeds 1..RUNS
@@ -143,7 +144,7 @@ STATS_OUT := $(OUT)/stats/table_3_1.txt $(OUT)/stats/table_3_2.txt $(OUT)/stats/
 REPORT := $(OUT)/report.md
 
 .PHONY: FORCE all prims chain integration integrated robustness generalisation stats figures report jobs \
-  cost status snapshot restore
+  cost status snapshot restore interim
 .DELETE_ON_ERROR:
 # a step's files stay when a later step fails: they are results
 .SECONDARY:
@@ -204,6 +205,29 @@ restore:
 	$(NEED_SNAPSHOT)
 	@test ! -e "$(OUT)" || { echo "restore: $(OUT) exists (restoring over it would overwrite newer files): expected a path that does not exist" >&2; exit 2; }
 	@sh tools/snapshot.sh "$(SNAPSHOT)" "$(OUT)"
+
+# ---- interim: while the study runs, the robustness test (40 trials, seconds a run) of the
+# integrated runs complete so far, with Table 3.1 and the description of them, in OUT/interim/
+# (made anew each time, whole or not at all). The study's own robustness step comes after its
+# last run; for the same runs it gives the same trials (tests/check_replicate.sh).
+INT_DONE = $(patsubst %/population.genome,%,$(wildcard $(SEEDS:%=$(OUT)/int-$(1)-s%/population.genome)))
+INTERIM_CONDS = $(strip $(foreach c,$(CONDS),$(if $(call INT_DONE,$(c)),$(c))))
+interim:
+	@test -n "$(INTERIM_CONDS)" || { echo "interim: no integrated run in $(OUT) is complete yet" >&2; exit 2; }
+	@rm -rf $(OUT)/interim.tmp && mkdir -p $(OUT)/interim.tmp
+	@$(foreach c,$(INTERIM_CONDS),$(POSTEVAL) robustness configs/integrated_$(c).cfg $(call INT_DONE,$(c)) \
+	  --out $(OUT)/interim.tmp/robustness-$(c) $(THREADS_ARG) $(ROB_ARGS) $(SET_ARGS) > /dev/null && ) true
+	@awk 'FNR > 1 || NR == 1' $(INTERIM_CONDS:%=$(OUT)/interim.tmp/robustness-%/summary.csv) > $(OUT)/interim.tmp/robustness.csv
+	@$(foreach t,table_3_1:table robustness:describe,$(STATS) $(lastword $(subst :, ,$(t))) \
+	  $(OUT)/interim.tmp/robustness.csv --test robustness > $(OUT)/interim.tmp/$(t).raw && \
+	  sed '1s|/interim\.tmp/|/interim/|' $(OUT)/interim.tmp/$(t).raw > $(OUT)/interim.tmp/$(firstword $(subst :, ,$(t))).txt && \
+	  rm $(OUT)/interim.tmp/$(t).raw && ) true
+	@rm -rf $(OUT)/interim && mv $(OUT)/interim.tmp $(OUT)/interim
+	@echo "interim: robustness of the complete integrated runs ($(foreach c,$(INTERIM_CONDS),$(c) $(words $(call INT_DONE,$(c))))), in $(OUT)/interim/"
+	@awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$$i] = i; next } \
+	  { printf "  %-12s %-6s %2d of %d\n", $$h["run_label"], $$h["condition"], $$h["successes"], $$h["trials"] }' \
+	  $(OUT)/interim/robustness.csv
+	@cat $(OUT)/interim/table_3_1.txt
 
 # ---- evolution: --resume continues a killed run to the identical files (or starts it). It
 # runs every time (FORCE): evolve writes population.genome before its last checkpoint, so a run
