@@ -55,6 +55,39 @@ if grep -qF "| ST-CT | - | 24 | 9.5** | 8.5** |" "$r" && grep -qF "| 581 (426, 7
   ok "report.md: the thesis's Table 3.1 and quartiles, our 8 integrated runs of 2 generations"
 else ko "report.md content"; fi
 
+# the robustness test by trial type: each run's successes per type (tiny: 4 trials, one each),
+# counted again here from the trials files
+bytype=$(awk -F, 'FNR == 1 { for (i = 1; i <= NF; i++) h[$i] = i; next }
+  { k = $h["condition"] "|" $h["run_label"]; n[k, $h["type"]] += $h["success"]; m[k, $h["type"]]++; seen[k] = 1 }
+  END { for (k in seen) { split(k, c, "|"); all = "yes"; line = "| " c[1] " | " c[2]
+    for (t = 0; t < 4; t++) { line = line " | " n[k, t] + 0 "/" m[k, t] + 0; if (!n[k, t]) all = "no" }
+    print line " | " all " |" } }' "$tmp"/a/posteval/robustness-{stct,st,ct,ni}/trials.csv | sort)
+if [ "$(echo "$bytype" | wc -l)" = 8 ] && [ "$(echo "$bytype" | grep -c '/1 |')" = 8 ] &&
+   [ "$(grep -E '^\| (ST-CT|ST|CT|NI) \| int-[a-z]+-s[0-9]+ \| [0-9]+/' "$r" | sort)" = "$bytype" ] &&
+   grep -qE "^\| ST-CT \| 9 \| $(echo "$bytype" | grep -c '^| ST-CT .* yes |$') \|$" "$r"; then
+  ok "report.md: the robustness test by trial type, each run (by hand), the thesis's ST-CT count"
+else ko "report.md by trial type" "$(grep -A14 '### By trial type' "$r")"; fi
+
+# and on trials whose successes are set by hand: ST-CT seed 1 succeeds in types 0 and 3, seed 2
+# in type 2, ST seed 1 in all four, the rest in none
+mkdir -p "$tmp/ty"
+for c in stct st ct ni; do
+  mkdir -p "$tmp/ty/robustness-$c"
+  awk -F, -v OFS=, 'FNR == 1 { for (i = 1; i <= NF; i++) h[$i] = i; print; next }
+    { l = $h["run_label"]; t = $h["type"]
+      $h["success"] = (l == "int-stct-s1" && (t == 0 || t == 3)) || (l == "int-stct-s2" && t == 2) ||
+        l == "int-st-s1"; print }' "$tmp/a/posteval/robustness-$c/trials.csv" > "$tmp/ty/robustness-$c/trials.csv"
+done
+/usr/bin/python3 tools/replicate_report.py "$tmp/ty" --types > "$tmp/ty.md" 2> "$tmp/e"
+if grep -qxF "| ST-CT | int-stct-s1 | 1/1 | 0/1 | 0/1 | 1/1 | no |" "$tmp/ty.md" &&
+   grep -qxF "| ST-CT | int-stct-s2 | 0/1 | 0/1 | 1/1 | 0/1 | no |" "$tmp/ty.md" &&
+   grep -qxF "| ST | int-st-s1 | 1/1 | 1/1 | 1/1 | 1/1 | yes |" "$tmp/ty.md" &&
+   grep -qxF "| NI | int-ni-s2 | 0/1 | 0/1 | 0/1 | 0/1 | no |" "$tmp/ty.md" &&
+   grep -qxF "| ST-CT | 9 | 0 |" "$tmp/ty.md" && grep -qxF "| ST | - | 1 |" "$tmp/ty.md" &&
+   [ "$(grep -c ' | no |$\| | yes |$' "$tmp/ty.md")" = 8 ]; then
+  ok "replicate_report.py --types: successes set by hand, counted by type"
+else ko "replicate_report.py --types" "$(cat "$tmp/ty.md" "$tmp/e")"; fi
+
 # the thesis's counts of §3.2 (learned, all autonomous, first generation): on a copy whose
 # integrated fitness.csv and robustness summary are set by hand. PRESET=tiny runs 4 trials, so
 # ST's autonomous bonus is at most 4 trials x 2 bonuses x 10 = 80 and ST-CT's (2 self-talk
@@ -107,6 +140,7 @@ if $REP interim OUT="$tmp/i" > "$tmp/in.out" 2> "$tmp/in.err" &&
    grep -qF "(stct 2 st 1 ct 2)" "$tmp/in.out" && [ "$(rows "$tmp/i/interim/robustness.csv")" = "$want" ] &&
    [ "$(echo "$want" | wc -l)" = 5 ] && [ ! -e "$tmp/i/interim.tmp" ] &&
    grep -qF "| ST-CT | - |" "$tmp/i/interim/table_3_1.txt" && ! grep -q "| NI |" "$tmp/i/interim/table_3_1.txt" &&
+   [ "$(grep -cE '^\| (ST-CT|ST|CT) \| int-' "$tmp/i/interim/types.md")" = 5 ] &&
    [ "$(st1 "$tmp/a/posteval/robustness-st/trials.csv")" = "$(st1 "$tmp/i/interim/robustness-st/trials.csv")" ] &&
    [ "$(st1 "$tmp/a/posteval/robustness-st/trials.csv" | wc -l)" = 4 ]; then
   ok "interim: the complete runs' robustness, as the study's step gives it, Table 3.1 of them"

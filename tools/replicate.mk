@@ -207,7 +207,8 @@ restore:
 	@sh tools/snapshot.sh "$(SNAPSHOT)" "$(OUT)"
 
 # ---- interim: while the study runs, the robustness test (40 trials, seconds a run) of the
-# integrated runs complete so far, with Table 3.1 and the description of them, in OUT/interim/
+# integrated runs complete so far, with Table 3.1, the description and the successes by trial
+# type of them, in OUT/interim/
 # (made anew each time, whole or not at all). The study's own robustness step comes after its
 # last run; for the same runs it gives the same trials (tests/check_replicate.sh).
 INT_DONE = $(patsubst %/population.genome,%,$(wildcard $(SEEDS:%=$(OUT)/int-$(1)-s%/population.genome)))
@@ -222,12 +223,13 @@ interim:
 	  $(OUT)/interim.tmp/robustness.csv --test robustness > $(OUT)/interim.tmp/$(t).raw && \
 	  sed '1s|/interim\.tmp/|/interim/|' $(OUT)/interim.tmp/$(t).raw > $(OUT)/interim.tmp/$(firstword $(subst :, ,$(t))).txt && \
 	  rm $(OUT)/interim.tmp/$(t).raw && ) true
+	@$(PYTHON) tools/replicate_report.py $(OUT)/interim.tmp --types > $(OUT)/interim.tmp/types.md
 	@rm -rf $(OUT)/interim && mv $(OUT)/interim.tmp $(OUT)/interim
 	@echo "interim: robustness of the complete integrated runs ($(foreach c,$(INTERIM_CONDS),$(c) $(words $(call INT_DONE,$(c))))), in $(OUT)/interim/"
 	@awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$$i] = i; next } \
 	  { printf "  %-12s %-6s %2d of %d\n", $$h["run_label"], $$h["condition"], $$h["successes"], $$h["trials"] }' \
 	  $(OUT)/interim/robustness.csv
-	@cat $(OUT)/interim/table_3_1.txt
+	@cat $(OUT)/interim/table_3_1.txt $(OUT)/interim/types.md
 
 # ---- evolution: --resume continues a killed run to the identical files (or starts it). It
 # runs every time (FORCE): evolve writes population.genome before its last checkpoint, so a run

@@ -4,6 +4,7 @@ numbers (data/thesis/results.json) beside ours.
 
     replicate_report.py OUT [--preset NAME] [--runs N] [--protocol chain|thesis]
                         [--prim-runs 'DIR ...' [--chain-runs 'DIR ...']] [-o report.md]
+    replicate_report.py DIR --types     the robustness test by trial type of DIR/robustness-*/
 
 Reads OUT/prims-s*/fitness.csv (and OUT/chain-s*/fitness.csv with --protocol chain), or the
 fitness.csv of the given runs' directories instead,
@@ -25,6 +26,7 @@ import runconfig  # noqa: E402
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 FITNESS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success", "best",
                          "best_bonus", "best_bonus_auto", "best_successes", "best_t%d", "best_c%d")
+TRIALS = csvschema.pick(csvschema.TRIALS, "condition", "run_label", "type", "success")
 SUMMARY = csvschema.pick(csvschema.SUMMARY, "condition", "run", "individual", "successes", "trials",
                          "open_jumped")
 THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
@@ -274,6 +276,42 @@ def section_integrated_counts(out, th):
     return lines + [""]
 
 
+def section_types(root, th):
+    """the robustness test by trial type (its four types of positions, 10 trials each) from
+    ROOT/robustness-<cond>/trials.csv (OUT/posteval, or OUT/interim): which runs succeed in all
+    four, the thesis's count for ST-CT (§3.2.1: 'in all the four types of positions') and the
+    types where each run fails"""
+    t = th["integrated_runs"]["all_autonomous"]
+    lines = ["### By trial type", "",
+             "Successes of each run's best in the robustness test by trial type (type = trial "
+             "mod 4: reach posture, object position and target). The thesis counts the ST-CT "
+             "runs whose best succeeds \"in all the four types of positions\" (§3.2.1).", "",
+             "| condition | run | type 0 | type 1 | type 2 | type 3 | all four types |",
+             "|---|---|---|---|---|---|---|"]
+    count = {}
+    for k, name in CONDS:
+        path = os.path.join(root, "robustness-%s" % k, "trials.csv")
+        if not os.path.exists(path):
+            continue
+        runs = {}
+        for r in read_rows(path):
+            n = runs.setdefault(r["run_label"], [[0, 0] for _ in range(4)])
+            n[int(r["type"]) % 4][0] += int(r["success"])
+            n[int(r["type"]) % 4][1] += 1
+        for label in sorted(runs, key=lambda x: (run_seed(x + "/"), x)):
+            n = runs[label]
+            every = all(won > 0 for won, _ in n)
+            count[name] = count.get(name, 0) + every
+            lines.append("| %s | %s | %s | %s |" % (name, label, " | ".join(
+                "%d/%d" % tuple(x) for x in n), "yes" if every else "no"))
+    lines += ["", "| condition | runs succeeding in all four types: thesis (of 10) | ours |",
+              "|---|---|---|"]
+    for _, name in CONDS:
+        lines.append("| %s | %s | %s |" % (name, t[name] if name == "ST-CT" else "-",
+                                         count.get(name, "-")))
+    return lines + [""]
+
+
 def per_run_table(s, th_tab, conds):
     lines = ["| condition | thesis: runs 0-9 (median) | ours: runs (median) |", "|---|---|---|"]
     for c in conds:
@@ -374,9 +412,16 @@ def main():
     ap.add_argument("--chain-runs", default="", metavar="'DIR ...'",
                     help="their chain stages (CHAIN_RUNS)")
     ap.add_argument("-o", dest="report", default=None)
+    ap.add_argument("--types", action="store_true",
+                    help="print only the robustness test by trial type, of OUT/robustness-<cond>/ "
+                         "(replicate.mk interim)")
     a = ap.parse_args()
     if not os.path.isdir(a.out):
         die("%s: not a directory" % a.out)
+    if a.types:
+        with open(THESIS) as f:
+            print("\n".join(section_types(a.out, json.load(f))[2:]))
+        return
     given_prims, given_chains = a.prim_runs.split(), a.chain_runs.split()
     if given_chains and a.protocol != "chain":
         die("--chain-runs with --protocol %s, which has no chain stage" % a.protocol)
@@ -408,6 +453,7 @@ def main():
     lines += section_integrated_counts(a.out, th)
     lines += section_test(a.out, th, "robustness", "Robustness test (thesis §3.2, Fig. 3.4)",
                           "table_3_1.txt", ["fig3_4"], "3.1", "A.1", th["conditions"])
+    lines += section_types(os.path.join(a.out, "posteval"), th)
     lines += section_test(a.out, th, "generalisation", "Generalisation test (thesis §3.2.5)",
                           "table_3_2.txt", ["fig3_9", "fig3_10"], "3.2", "A.2",
                           th["conditions"] + ["ST-CT0", "ST0"])
