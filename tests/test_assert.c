@@ -21,6 +21,7 @@
 #endif
 
 #include "core/internal.h"
+#include "selftalk/fitness.h"
 #include "selftalk/trial.h"
 #include "test_util.h"
 
@@ -70,6 +71,14 @@ static void trial_spec_at(int index) {
   free(p);
 }
 
+static void harmonic_of(int n) {
+  /* eq. 2.13's harmonic mean of no primitive's fitness is 0 / 0: the call is refused */
+  stFitnessDef d;
+  memset(&d, 0, sizeof d);
+  const double fp[1] = {1.0};
+  (void)st_harmonic_fitness(&d, fp, n);
+}
+
 static void test_assert_library(void) {
   if (!LIB_ASSERTS) return; /* release build: asserts compiled out */
   char msg[512];
@@ -77,6 +86,10 @@ static void test_assert_library(void) {
   ST_ASSERT_CONTAINS(msg, "selftalk: assertion failed in st_trial_spec (lib/episode/trial.c:");
   ST_ASSERT_CONTAINS(msg, "index < (stage == ST_STAGE_MAIN ? ST_MAIN_TRIALS_MAX : ST_PRIM_TRIALS)");
   CU_ASSERT(dies(trial_spec_at, -1, msg, sizeof msg));
+  CU_ASSERT(!dies(harmonic_of, 1, msg, sizeof msg));
+  CU_ASSERT(dies(harmonic_of, 0, msg, sizeof msg));
+  ST_ASSERT_CONTAINS(msg, "selftalk: assertion failed in st_harmonic_fitness (lib/task/fitness.c:");
+  ST_ASSERT_CONTAINS(msg, "): d && fp && n > 0\n");
 }
 
 void st_suite_assert(void) {

@@ -102,6 +102,7 @@ static stStatus grow_all(const stConfig *c, const stGenome *taken, int ntaken, s
 }
 
 stStatus st_assemble_population(const stConfig *c, stAssembly *a, char *err, size_t errsz) {
+  ST_ASSERT(c && a);
   memset(a, 0, sizeof *a);
   fileList l;
   l.n = 0;

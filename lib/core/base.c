@@ -135,6 +135,7 @@ static size_t read_bounded(FILE *f, size_t max, char **buf, int *enomem) {
 
 stStatus st_file_read(const char *path, size_t max, char **data, size_t *len, char *err,
                       size_t errsz) {
+  ST_ASSERT(path && data && len);
   *data = NULL;
   *len = 0;
   FILE *f = fopen(path, "rb");
@@ -173,6 +174,7 @@ stStatus st_file_read(const char *path, size_t max, char **data, size_t *len, ch
 }
 
 stStatus st_text_check(const char *name, const char *text, size_t len, char *err, size_t errsz) {
+  ST_ASSERT(name && (text || len == 0));
   const char *nul = memchr(text, 0, len);
   if (!nul) return ST_OK;
   size_t line = 1, col = 1;
@@ -186,6 +188,7 @@ stStatus st_text_check(const char *name, const char *text, size_t len, char *err
 
 stStatus st_text_read(const char *path, size_t max, char **text, size_t *len, char *err,
                       size_t errsz) {
+  ST_ASSERT(path && text && len);
   stStatus st = st_file_read(path, max, text, len, err, errsz);
   if (!st && (st = st_text_check(path, *text, *len, err, errsz))) {
     free(*text);
@@ -220,6 +223,7 @@ stStatus st__text_read_parse(const char *path, stTextParse parse, void *ctx, cha
 }
 
 stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t errsz) {
+  ST_ASSERT(af && path);
   memset(af, 0, sizeof *af);
   if (strlen(path) + 32 >= sizeof af->tmp) {
     st__errf(err, errsz, "%s: path too long", path);
@@ -236,6 +240,7 @@ stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t er
 }
 
 int st_atomic_clean(const char *path) {
+  ST_ASSERT(path);
   char dir[ST_PATH_MAX];
   st__strlcpy(dir, path, sizeof dir);
   char *slash = strrchr(dir, '/');
@@ -279,6 +284,7 @@ static int commit_steps(stAtomicFile *af, int *e) {
 }
 
 stStatus st_atomic_commit(stAtomicFile *af, char *err, size_t errsz) {
+  ST_ASSERT(af);
   int e = 0;
   const int step = commit_steps(af, &e);
   if (!step) return ST_OK;
@@ -292,6 +298,7 @@ stStatus st_atomic_commit(stAtomicFile *af, char *err, size_t errsz) {
 }
 
 void st_atomic_abort(stAtomicFile *af) {
+  ST_ASSERT(af);
   if (af->f) fclose(af->f);
   af->f = NULL;
   if (af->tmp[0]) remove(af->tmp);

@@ -36,6 +36,7 @@ int st_config_nkeys(void) { return NKEYS; }
 const stConfigKey *st_config_key(int i) { return i >= 0 && i < NKEYS ? &g_keys[i] : NULL; }
 
 int st_config_find(const char *section, const char *name) {
+  ST_ASSERT(section && name);
   for (int i = 0; i < NKEYS; i++)
     if (!strcmp(g_keys[i].section, section) && !strcmp(g_keys[i].name, name)) return i;
   return -1;
@@ -293,6 +294,7 @@ static int choice_at(const char *choices, int i, char *buf, size_t n) {
 }
 
 const char *st_config_enum_name(const char *section, const char *name, int value) {
+  ST_ASSERT(section && name);
   static char buf[64]; /* choices are static; one shared buffer is enough for messages */
   int i = st_config_find(section, name);
   if (i < 0 || g_keys[i].type != ST_CFG_ENUM || choice_at(g_keys[i].choices, value, buf, sizeof buf))
@@ -301,6 +303,7 @@ const char *st_config_enum_name(const char *section, const char *name, int value
 }
 
 unsigned st_config_run_stages(const stConfig *cfg) {
+  ST_ASSERT(cfg);
   const char *name = st_config_enum_name("stage", "stages", cfg->stage_stages);
   for (size_t i = 0; i < sizeof g_run_stages / sizeof g_run_stages[0]; i++)
     if (!strcmp(g_run_stages[i].choice, name)) return g_run_stages[i].stages;
@@ -308,6 +311,7 @@ unsigned st_config_run_stages(const stConfig *cfg) {
 }
 
 void st_config_default(stConfig *cfg) {
+  ST_ASSERT(cfg);
   memset(cfg, 0, sizeof *cfg);
   for (int i = 0; i < NKEYS; i++) {
     const stConfigKey *k = &g_keys[i];
@@ -428,6 +432,7 @@ static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value
 }
 
 unsigned st_config_primitive_mask(const stConfig *cfg) {
+  ST_ASSERT(cfg);
   unsigned mask = 0;
   const char *s = cfg->stage_primitives;
   for (;;) {
@@ -640,6 +645,7 @@ static int check_range(const stConfig *c, const stConfigKey *k, char *msg, size_
 }
 
 stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz) {
+  ST_ASSERT(cfg);
   char msg[512];
   for (int i = 0; i < NKEYS; i++) {
     if (check_range(cfg, &g_keys[i], msg, sizeof msg)) {
@@ -657,6 +663,7 @@ stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz) {
 
 stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
                                 size_t errsz) {
+  ST_ASSERT(section && name);
   const int i = st_config_find(section, name);
   const stConfigKey *k = st_config_key(i);
   if (!k || (k->type != ST_CFG_INT && k->type != ST_CFG_REAL)) {
@@ -703,6 +710,7 @@ static unsigned value_readers(const stConfig *cfg, const stConfigKey *k) {
 
 stStatus st_config_check_changes(const stConfig *cfg, const stConfig *base, const char *base_name,
                                  unsigned stages, char *err, size_t errsz) {
+  ST_ASSERT(cfg && base && base_name);
   for (int i = 0; i < NKEYS; i++) {
     const stConfigKey *k = &g_keys[i];
     const stageKey *r = stage_key(k);
@@ -725,6 +733,7 @@ stStatus st_config_check_changes(const stConfig *cfg, const stConfig *base, cons
 }
 
 stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err, size_t errsz) {
+  ST_ASSERT(cfg);
   stConfig d;
   st_config_default(&d);
   return st_config_check_changes(cfg, &d, "the default", stages, err, errsz);
@@ -892,6 +901,7 @@ static stStatus parse_cb(const char *name, char *text, size_t len, void *cfg, ch
 }
 
 stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz) {
+  ST_ASSERT(path && cfg);
   return st__text_read_parse(path, parse_cb, cfg, err, errsz);
 }
 
@@ -930,11 +940,13 @@ static stStatus set_one(stConfig *cfg, const char *assignment, int cross, char *
 }
 
 stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz) {
+  ST_ASSERT(cfg && assignment);
   return set_one(cfg, assignment, 1, err, errsz);
 }
 
 stStatus st_config_set_all(stConfig *cfg, const char *const *assignments, int n, char *err,
                            size_t errsz) {
+  ST_ASSERT(cfg && n >= 0 && (assignments || n == 0));
   for (int i = 0; i < n; i++) {
     stStatus st = set_one(cfg, assignments[i], 0, err, errsz);
     if (st) return st;
@@ -964,6 +976,7 @@ static void format_value(const stConfig *cfg, const stConfigKey *k, char *buf, s
 }
 
 int st_config_write(FILE *f, const stConfig *cfg) {
+  ST_ASSERT(f && cfg);
   fprintf(f, "# libselftalk %s resolved configuration\n", ST_VERSION_STRING);
   for (int i = 0; i < NKEYS; i++) {
     const stConfigKey *k = &g_keys[i];
@@ -976,6 +989,7 @@ int st_config_write(FILE *f, const stConfig *cfg) {
 }
 
 void st_config_help(FILE *f) {
+  ST_ASSERT(f);
   static const char *tn[] = {"int", "real", "bool", "enum", "string"};
   stConfig d;
   st_config_default(&d);

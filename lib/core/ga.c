@@ -18,6 +18,7 @@ struct stGa {
 };
 
 stGaDef st_ga_def_from_config(const stConfig *cfg) {
+  ST_ASSERT(cfg);
   stGaDef d;
   memset(&d, 0, sizeof d);
   d.population = cfg->ga_population;
@@ -113,8 +114,14 @@ void st_ga_destroy(stGa *ga) {
   free(ga);
 }
 
-const stGaDef *st_ga_def(const stGa *ga) { return &ga->def; }
-int st_ga_generation(const stGa *ga) { return ga->generation; }
+const stGaDef *st_ga_def(const stGa *ga) {
+  ST_ASSERT(ga);
+  return &ga->def;
+}
+int st_ga_generation(const stGa *ga) {
+  ST_ASSERT(ga);
+  return ga->generation;
+}
 const stGenome *st_ga_genome(const stGa *ga, int i) {
   ST_ASSERT(ga);
   ST_ASSERT(i >= 0 && i < ga->def.population);
@@ -194,6 +201,7 @@ stStatus st_ga_next(stGa *ga) {
 
 stStatus st_ga_restore(stGa *ga, int generation, const stGenome *pop, int n, char *err,
                        size_t errsz) {
+  ST_ASSERT(ga && (pop || n == 0));
   if (n < ga->def.population) {
     st__errf(err, errsz, "population has %d genotypes (expected %d)", n, ga->def.population);
     return ST_ERR_ARG;

@@ -22,6 +22,7 @@ const char *st_arch_name(stNetArch arch) {
 }
 
 int st_arch_parse(const char *name) {
+  ST_ASSERT(name);
   if (!strcasecmp(name, "base")) return ST_ARCH_BASE;
   if (!strcasecmp(name, "A")) return ST_ARCH_A;
   if (!strcasecmp(name, "B")) return ST_ARCH_B;
@@ -59,6 +60,7 @@ void st_genome_random(stGenome *g, int ngenes, stRng *rng) {
 
 stStatus st_genome_grow(const stGenome *in, stNetArch arch, uint16_t typeb_init, stRng *rng,
                         stGenome *out, char *err, size_t errsz) {
+  ST_ASSERT(in && rng && out);
   if (in->ngenes != ST_GENES_BASE) {
     st__errf(err, errsz, "genotype has %d genes (expected %d to grow)", in->ngenes, ST_GENES_BASE);
     return ST_ERR_ARG;
@@ -79,6 +81,7 @@ stStatus st_genome_grow(const stGenome *in, stNetArch arch, uint16_t typeb_init,
 }
 
 void st_genome_mask_new_genes(uint8_t *mask, int ngenes) {
+  ST_ASSERT(mask && ngenes >= 0);
   for (int i = 0; i < ST_GENOME_MAX_GENES; i++) mask[i] = (uint8_t)(i >= ST_GENES_BASE && i < ngenes);
 }
 
@@ -259,6 +262,7 @@ stStatus st__genome_set_parse(const char *name, const char *text, size_t len, in
 
 stStatus st_genome_set_read(const char *path, int expect_genes, stGenomeSet *set, char *err,
                             size_t errsz) {
+  ST_ASSERT(path && set);
   memset(set, 0, sizeof *set);
   char *text;
   size_t len;
@@ -270,6 +274,7 @@ stStatus st_genome_set_read(const char *path, int expect_genes, stGenomeSet *set
 }
 
 int st_genome_write_line(FILE *f, const stGenome *g) {
+  ST_ASSERT(f && g);
   static const char hex[] = "0123456789abcdef";
   char buf[4 * ST_GENOME_MAX_GENES + 2];
   for (int i = 0; i < g->ngenes; i++) {
@@ -285,6 +290,7 @@ int st_genome_write_line(FILE *f, const stGenome *g) {
 }
 
 int st_genome_write(FILE *f, const stGenome *g, int generation, double fitness) {
+  ST_ASSERT(f && g);
   if (fprintf(f, "# genes %d\n", g->ngenes) < 0) return -1;
   if (generation >= 0 && fprintf(f, "# generation %d\n", generation) < 0) return -1;
   if (isfinite(fitness) && fprintf(f, "# fitness %.17g\n", fitness) < 0) return -1;
@@ -293,6 +299,7 @@ int st_genome_write(FILE *f, const stGenome *g, int generation, double fitness) 
 
 stStatus st_genome_set_save(const char *path, const stGenome *g, int count, const double *fitness,
                             const int *generation, char *err, size_t errsz) {
+  ST_ASSERT(path && count >= 0 && (g || count == 0));
   stAtomicFile af;
   stStatus st = st_atomic_open(&af, path, err, errsz);
   if (st) return st;

@@ -6,6 +6,7 @@
 #include "selftalk/net.h"
 
 stNetDef st_net_def_from_config(const stConfig *cfg) {
+  ST_ASSERT(cfg);
   stNetDef d = {cfg->network_lambda, cfg->network_gamma_a, cfg->network_gamma_b};
   return d;
 }
@@ -111,6 +112,7 @@ void st_net_step(const stNetParams *p, stNetState *s, const double *in, double *
 }
 
 int st_net_selftalk_label(const stNetState *s) {
+  ST_ASSERT(s);
   int best = 0;
   for (int m = 1; m < ST_NET_NLING; m++)
     if (s->ling_emit[m] > s->ling_emit[best]) best = m;

@@ -13,6 +13,7 @@ stPredDef st_pred_default_def(void) {
 }
 
 void st_pred_def_from_config(const stConfig *c, stPredDef *d) {
+  ST_ASSERT(c && d);
   d->window = c->prediction_window;
   d->bonus_window = c->prediction_bonus_window;
   d->bonus = c->fitness_bonus;

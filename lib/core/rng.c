@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 #include "selftalk/rng.h"
 
+#include "core/internal.h"
+
 #define GOLDEN 0x9E3779B97F4A7C15ull
 
 uint64_t st_rng_mix64(uint64_t x) {
@@ -29,19 +31,23 @@ stRng st_rng_keyed(uint64_t seed, stRngStream stream, uint64_t generation, uint6
 }
 
 uint64_t st_rng_u64(stRng *rng) {
+  ST_ASSERT(rng);
   rng->counter++;
   return st_rng_mix64(rng->key + rng->counter * GOLDEN);
 }
 
 double st_rng_uniform(stRng *rng) {
+  ST_ASSERT(rng);
   return (double)(st_rng_u64(rng) >> 11) * (1.0 / 9007199254740992.0);
 }
 
 double st_rng_range(stRng *rng, double lo, double hi) {
+  ST_ASSERT(rng);
   return lo + (hi - lo) * st_rng_uniform(rng);
 }
 
 int st_rng_bernoulli(stRng *rng, double p) {
+  ST_ASSERT(rng);
   double u = st_rng_uniform(rng);
   return u < p;
 }

@@ -54,6 +54,7 @@ static double *exact_counts(int n_a, int n_b, int kmax) {
 }
 
 stStatus st_mwu_exact_p(int n_a, int n_b, double u, double *p, char *err, size_t errsz) {
+  ST_ASSERT(p);
   if (n_a < 1 || n_b < 1 || n_a > ST_MWU_EXACT_LIMIT || n_b > ST_MWU_EXACT_LIMIT)
     return st__errf(err, errsz, "mann-whitney exact: sizes %d and %d (expected 1..%d each)", n_a,
                     n_b, ST_MWU_EXACT_LIMIT), ST_ERR_RANGE;
@@ -122,6 +123,7 @@ static void normal_p(const stMwuDef *d, double tie_term, stMwuResult *r) {
 
 stStatus st_mwu(const stMwuDef *def, const double *a, int n_a, const double *b, int n_b,
                 stMwuResult *r, char *err, size_t errsz) {
+  ST_ASSERT(r);
   const stMwuDef d = def ? *def : st_mwu_default_def();
   stStatus st = check_def(&d, err, errsz);
   if (!st) st = check_sample("mann-whitney: sample A", a, n_a, err, errsz);
@@ -168,6 +170,7 @@ static int cmp_double(const void *x, const void *y) {
 }
 
 stStatus st_quartiles(const double *x, int n, stQuartiles *q, char *err, size_t errsz) {
+  ST_ASSERT(q);
   stStatus st = check_sample("quartiles", x, n, err, errsz);
   if (st) return st;
   double *s = malloc(sizeof *s * (size_t)n);

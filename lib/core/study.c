@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 #include "selftalk/study.h"
 
+#include "core/internal.h"
+
 #include <string.h>
 
 static const char *const g_primitives[ST_NPRIM] = {"reach", "open", "grasp", "move"};
@@ -10,6 +12,7 @@ static const char *const g_tests[ST_POST_NTESTS] = {"integration", "robustness",
 const char *st_primitive_name(int p) { return p >= 0 && p < ST_NPRIM ? g_primitives[p] : "?"; }
 
 int st_primitive_parse(const char *name, size_t len) {
+  ST_ASSERT(name);
   for (int p = 0; p < ST_NPRIM; p++)
     if (len == strlen(g_primitives[p]) && !strncmp(name, g_primitives[p], len)) return p;
   return -1;
@@ -24,6 +27,7 @@ const char *st_post_test_name(stPostTest t) {
 }
 
 int st_post_test_parse(const char *name) {
+  ST_ASSERT(name);
   for (int t = 0; t < ST_POST_NTESTS; t++)
     if (!strcmp(name, g_tests[t])) return t;
   return -1;

@@ -122,6 +122,7 @@ stController st_net_controller(stNetController *c, const stNetParams *net, const
 }
 
 stStatus st_force_check(const stForce *force, int nforce, char *err, size_t errsz) {
+  ST_ASSERT(nforce >= 0 && (force || nforce == 0));
   if (nforce < 0 || (nforce > 0 && !force))
     return st__errf(err, errsz, "forced outputs: count %d (expected >= 0, and a list when > 0)",
                     nforce), ST_ERR_ARG;
@@ -253,6 +254,7 @@ static void observe(const stProtocol *p, const stWorld *w, stTraceStep *s) {
 stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
                         const stController *ctl, const stWords *words, const stScorer *scorer,
                         stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && ws && e && ctl && words && scorer);
   return st_episode_run_rollin(p, ws, e, ctl, NULL, words, scorer, trace, ctx, err, errsz);
 }
 

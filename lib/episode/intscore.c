@@ -19,6 +19,7 @@ static stWordSource source_of(int choice) {
 }
 
 void st_integrated_def_from_config(const stConfig *c, stIntegratedDef *d) {
+  ST_ASSERT(c && d);
   memset(d, 0, sizeof *d);
   d->arch = (stNetArch)c->network_arch;
   d->words[0] = source_of(c->integrated_words_even);
@@ -36,6 +37,7 @@ void st_integrated_def_from_config(const stConfig *c, stIntegratedDef *d) {
 }
 
 void st_chain_def_from_config(const stConfig *c, stIntegratedDef *d) {
+  ST_ASSERT(c && d);
   st_integrated_def_from_config(c, d);
   d->arch = ST_ARCH_BASE;
   d->words[0] = d->words[1] = ST_WORDS_CARETAKER;
@@ -62,6 +64,7 @@ stIntPlan st_integrated_plan(const stIntegratedDef *d, int generation, int trial
 /* ---- eq. 2.14 ---- */
 
 double st_int_s(const stFitnessDef *d, const stQuantities *q, int opened) {
+  ST_ASSERT(d && q);
   const double sm = st_step_s(d, ST_STAGE_MAIN, ST_PRIM_MOVE, q); /* eq. 2.12 */
   double stage;
   if (q->lifted) stage = 2.0;
@@ -72,6 +75,7 @@ double st_int_s(const stFitnessDef *d, const stQuantities *q, int opened) {
 
 double st_int_step_fitness(const stFitnessDef *d, const stQuantities *q, int opened,
                            double y_focus, double threshold) {
+  ST_ASSERT(d && q);
   const int right_target = q->lifted; /* the target while lifted, the object otherwise */
   const double ff = right_target ? y_focus : 1.0 - y_focus;
   const int correct = (y_focus >= threshold) == right_target;
@@ -79,6 +83,7 @@ double st_int_step_fitness(const stFitnessDef *d, const stQuantities *q, int ope
 }
 
 double st_int_penalty(const stQuantities *q, double pen_table, double pen_moving) {
+  ST_ASSERT(q);
   return pen_table + (q->lifted ? 0.0 : pen_moving);
 }
 
@@ -115,6 +120,7 @@ static void track(stIntScore *sc, int step, const stQuantities *q, double y_focu
 int st_int_score_step(stIntScore *sc, int step, const stQuantities *q, double y_focus,
                       double pen_table, double pen_moving, int fell, int unstable, double *S_out,
                       double *P_out) {
+  ST_ASSERT(sc && q); /* S_out, P_out nullable */
   stIntTrialResult *r = &sc->r;
   track(sc, step, q, y_focus);
   const double S = st_int_step_fitness(sc->fd, q, r->opened, y_focus, sc->focus_threshold);
@@ -175,10 +181,14 @@ void st_int_score_end(stIntScore *sc, stIntTrialResult *out) {
 }
 
 double st_int_trial_bonus(const stIntTrialResult *r, double bonus, double factor) {
+  ST_ASSERT(r);
   return (double)(r->focus_bonus + r->success) * bonus * factor;
 }
 
-double st_int_trial_points(const stIntTrialResult *r) { return fmax(0.0, r->sum_s - r->sum_p); }
+double st_int_trial_points(const stIntTrialResult *r) {
+  ST_ASSERT(r);
+  return fmax(0.0, r->sum_s - r->sum_p);
+}
 
 /* ---- an individual ---- */
 

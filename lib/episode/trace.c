@@ -58,4 +58,7 @@ void st_trace_csv_row(const stTraceCsv *c, const stTraceStep *s) {
   fputc('\n', f);
 }
 
-void st_trace_csv_fn(void *ctx, const stTraceStep *s) { st_trace_csv_row(ctx, s); }
+void st_trace_csv_fn(void *ctx, const stTraceStep *s) {
+  ST_ASSERT(ctx && s);
+  st_trace_csv_row(ctx, s);
+}

@@ -318,6 +318,7 @@ static stStatus trial_run_rollin_with(const stProtocol *p, stWorkspace *ws, cons
 stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                            const stController *ctl, uint64_t seed_key, stTrialResult *r,
                            stTraceFn trace, void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && ws && t && ctl && r);
   return trial_run_rollin_with(p, ws, t, ctl, NULL, seed_key, r, trace, ctx, err, errsz);
 }
 
@@ -350,6 +351,7 @@ stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrial
                              const stNetParams *net, const stForce *force, int nforce,
                              uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
                              char *err, size_t errsz) {
+  ST_ASSERT(p && ws && t && net && r);
   return st_trial_run_rollin(p, ws, t, net, NULL, force, nforce, seed_key, r, trace, ctx, err,
                              errsz);
 }
@@ -357,6 +359,7 @@ stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrial
 stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                       const stNetParams *net, uint64_t seed_key, stTrialResult *r, stTraceFn trace,
                       void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && ws && t && net && r);
   return st_trial_run_forced(p, ws, t, net, NULL, 0, seed_key, r, trace, ctx, err, errsz);
 }
 
@@ -532,6 +535,7 @@ int st_stage_rollin_elite(const stProtocol *p, stStage stage) {
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, stEvaluation *e, char *err,
                            size_t errsz) {
+  ST_ASSERT(p && ws && net && e);
   return st_stage_evaluate_rollin(p, ws, stage, generation, individual, net, NULL, e, err, errsz);
 }
 

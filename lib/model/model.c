@@ -3,6 +3,8 @@
  * lib/model/model_urdf.cpp. */
 #include "selftalk/model.h"
 
+#include "core/internal.h"
+
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -75,6 +77,7 @@ void st_model_destroy(stModel *model) {
 }
 
 int st_model_body(const stModel *model, const char *link_name) {
+  ST_ASSERT(model && link_name);
   if (!model || !link_name) return -1;
   for (int b = 0; b < model->nbody; b++)
     if (!strncmp(model->body_name[b], link_name, ST_NAME_MAX)) return b;
@@ -82,6 +85,7 @@ int st_model_body(const stModel *model, const char *link_name) {
 }
 
 int st_model_joint(const stModel *model, const char *joint_name) {
+  ST_ASSERT(model && joint_name);
   if (!model || !joint_name) return -1;
   for (int b = 1; b < model->nbody; b++) /* entry 0 (the root) has no joint */
     if (!strncmp(model->jnt_name[b], joint_name, ST_NAME_MAX)) return b;

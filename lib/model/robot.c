@@ -60,6 +60,7 @@ static int master_of(const stModel *m, int b) {
 
 stStatus st_robot_bind(stModel *m, const stConfig *cfg, const char *source, stRobot **out,
                        char *err, size_t errsz) {
+  ST_ASSERT(m && cfg && out);
   *out = NULL;
   stRobot *r = calloc(1, sizeof *r);
   size_t nb = (size_t)m->nbody;
@@ -179,6 +180,7 @@ fail:
 }
 
 stStatus st_robot_create(const stConfig *cfg, stRobot **robot, char *err, size_t errsz) {
+  ST_ASSERT(cfg && robot);
   stModel *m = NULL;
   stStatus st = st_model_load_urdf(cfg->robot_urdf, &m, err, errsz);
   if (st) {

@@ -206,6 +206,7 @@ int st_post_write_summary(FILE *f, const stPostLabels *L, const stPostIndividual
 /* ---- reading ---- */
 
 stStatus st_post_read_summary(const char *path, stCsvRows *rows, char *err, size_t errsz) {
+  ST_ASSERT(path && rows);
   return st_csv_read(path, &g_summary, NULL, rows, err, errsz);
 }
 

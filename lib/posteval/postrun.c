@@ -40,6 +40,7 @@ static void last_component(const char *path, char *buf, size_t n) {
 }
 
 void st_post_run_label(const char *path, char *buf, size_t n) {
+  ST_ASSERT(path && buf && n > 0);
   char name[512], dir[512];
   last_component(path, name, sizeof name);
   const int run_file = !strcmp(name, "population.genome") || !strcmp(name, "checkpoint") ||
@@ -75,6 +76,7 @@ static void individual_init(stPostIndividual *ind, const char *label, const char
 
 stStatus st_post_load_population(const char *path, int top, int ngenes, stPostIndividual *out,
                                  char *err, size_t errsz) {
+  ST_ASSERT(path && out);
   char file[ST_PATH_MAX];
   snprintf(file, sizeof file, "%s", path);
   if (is_dir(path)) {
@@ -165,6 +167,7 @@ static stStatus last_best(const char *dir, int ngenes, stGenome *g, int *generat
 
 stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
                           stPostIndividual *out, char *err, size_t errsz) {
+  ST_ASSERT(dir && cfg && out);
   if (!is_dir(dir))
     return st__errf(err, errsz, "%s: not a directory (expected an integrated run directory of "
                     "evolve: config.ini, fitness.csv, best.genome)", dir), ST_ERR_IO;

@@ -1,9 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 #include "selftalk/fitness.h"
 
+#include "core/internal.h"
+
 #include <math.h>
 
 void st_fitness_def_from_config(const stConfig *c, stFitnessDef *d) {
+  ST_ASSERT(c && d);
   d->focus_weight = c->fitness_focus_weight;
   d->decay = c->fitness_decay;
   d->open_h = c->fitness_open_h;
@@ -24,6 +27,7 @@ void st_fitness_def_from_config(const stConfig *c, stFitnessDef *d) {
 int st_primitive_focus_target(int p) { return p == ST_PRIM_MOVE; }
 
 double st_step_s(const stFitnessDef *d, stStage stage, int p, const stQuantities *q) {
+  ST_ASSERT(d && q);
   const double k = d->decay;
   switch (p) {
     case ST_PRIM_REACH: return exp(-k * q->d_r); /* eq. 2.5 */
@@ -42,6 +46,7 @@ double st_step_s(const stFitnessDef *d, stStage stage, int p, const stQuantities
 
 double st_step_fitness(const stFitnessDef *d, stStage stage, int p, const stQuantities *q,
                        double y_focus, double threshold) {
+  ST_ASSERT(d && q);
   const int right_target = st_primitive_focus_target(p);
   const double ff = right_target ? y_focus : 1.0 - y_focus;
   const int correct = (y_focus >= threshold) == right_target;
@@ -49,6 +54,7 @@ double st_step_fitness(const stFitnessDef *d, stStage stage, int p, const stQuan
 }
 
 int st_success_now(const stFitnessDef *d, stStage stage, int p, const stQuantities *q) {
+  ST_ASSERT(d && q);
   switch (p) {
     case ST_PRIM_REACH: return q->d_r < d->success_dist;
     case ST_PRIM_OPEN: return q->d_r < d->success_dist && q->h > d->open_h && q->p > d->palm_down;
@@ -73,10 +79,12 @@ int st_penalty_mask(stStage stage, int p, int step, int grasp_table_off_step) {
 }
 
 double st_primitive_fitness(const stFitnessDef *d, double bonus, double sum_sp, long n) {
+  ST_ASSERT(d);
   return bonus + (n > 0 ? d->scale / (double)n * sum_sp : 0.0);
 }
 
 double st_harmonic_fitness(const stFitnessDef *d, const double *fp, int n) {
+  ST_ASSERT(d && fp && n > 0);
   double inv = 0.0;
   for (int i = 0; i < n; i++) inv += 1.0 / (fp[i] > d->fp_min ? fp[i] : d->fp_min);
   return (double)n / inv;

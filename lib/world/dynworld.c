@@ -158,6 +158,7 @@ static void rand_warn(void) {
 /* ---- configuration ----------------------------------------------------------------------- */
 
 void st_dyn_def_from_config(const stConfig *c, stDynDef *d) {
+  ST_ASSERT(c && d);
   memset(d, 0, sizeof *d);
   d->solver = c->dynamics_solver;
   d->substep = c->dynamics_substep;

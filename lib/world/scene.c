@@ -6,6 +6,7 @@
 #include "core/internal.h"
 
 void st_scene_from_config(const stConfig *c, stScene *s) {
+  ST_ASSERT(c && s);
   memset(s, 0, sizeof *s);
   s->table_top_z = c->scene_table_top_z;
   s->table_lo[0] = c->scene_table_x_min;

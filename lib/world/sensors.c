@@ -8,6 +8,7 @@
 #include "selftalk/genome.h"
 
 void st_sensor_def_from_config(const stConfig *c, stSensorDef *d) {
+  ST_ASSERT(c && d);
   d->focus_scale = c->network_focus_scale;
   d->focus_threshold = c->network_focus_threshold;
   d->reach_height = c->fitness_reach_height;
@@ -46,7 +47,10 @@ void st_quantities(const stWorld *w, const stSensorDef *def, stQuantities *q) {
   q->lifted = w->contacts.robot_object && !w->contacts.object_table;
 }
 
-int st_focus_is_target(const stSensorDef *def, double y) { return y >= def->focus_threshold; }
+int st_focus_is_target(const stSensorDef *def, double y) {
+  ST_ASSERT(def);
+  return y >= def->focus_threshold;
+}
 
 double st_focus_correctness(double y, int right_is_target) { return right_is_target ? y : 1.0 - y; }
 

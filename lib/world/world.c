@@ -11,6 +11,7 @@
 #include "world/world_geom.h"
 
 static const stWorldBackend *backend(const stWorld *w) {
+  ST_ASSERT(w && w->internal_); /* every public function's world: created, not destroyed */
   return ((const stWorldHead *)w->internal_)->backend;
 }
 
@@ -41,6 +42,7 @@ static stStatus world_finish(stWorld *w, stStatus st, stWorld **out) {
 
 stStatus st_world_create(const stRobot *robot, const stScene *scene, stWorld **out, char *err,
                          size_t errsz) {
+  ST_ASSERT(robot && scene && out);
   *out = NULL;
   stWorld *w = world_new(robot, scene);
   if (!w) return st__errf(err, errsz, "world: out of memory"), ST_ERR_NOMEM;
@@ -49,6 +51,7 @@ stStatus st_world_create(const stRobot *robot, const stScene *scene, stWorld **o
 
 stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, const stDynDef *def,
                                  stWorld **out, char *err, size_t errsz) {
+  ST_ASSERT(robot && scene && def && out);
   *out = NULL;
   stWorld *w = world_new(robot, scene);
   if (!w) return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
@@ -107,7 +110,10 @@ void st_world_point(const stWorld *w, int b, const double l[3], double out[3]) {
   st__frame_point(w->R[b], w->p[b], l, out);
 }
 
-void st_world_joint_angles(const stWorld *w, double *angle) { backend(w)->joint_angles(w, angle); }
+void st_world_joint_angles(const stWorld *w, double *angle) {
+  ST_ASSERT(angle);
+  backend(w)->joint_angles(w, angle);
+}
 
 /* ---- dynamics: the answers of a world without them where the backend has none ------------- */
 
@@ -138,6 +144,7 @@ const char *st_world_unstable_reason(const stWorld *w) {
 }
 
 void st_world_dynamic_info(const stWorld *w, stDynInfo *info) {
+  ST_ASSERT(info);
   memset(info, 0, sizeof *info);
   if (backend(w)->info) backend(w)->info(w, info);
 }
