@@ -208,9 +208,9 @@ restore:
 
 # ---- interim: while the study runs, the robustness test (40 trials, seconds a run) of the
 # integrated runs complete so far, with Table 3.1, the description and the successes by trial
-# type of them, in OUT/interim/
-# (made anew each time, whole or not at all). The study's own robustness step comes after its
-# last run; for the same runs it gives the same trials (tests/check_replicate.sh).
+# type of them, in OUT/interim/ (made anew each time, whole or not at all). The study's own
+# robustness step comes after its last run; for the same runs it gives the same trials
+# (tests/check_replicate.sh).
 INT_DONE = $(patsubst %/population.genome,%,$(wildcard $(SEEDS:%=$(OUT)/int-$(1)-s%/population.genome)))
 INTERIM_CONDS = $(strip $(foreach c,$(CONDS),$(if $(call INT_DONE,$(c)),$(c))))
 interim:
