@@ -371,6 +371,25 @@ static void test_int_selftalk_loop(void) {
       CU_ASSERT_EQUAL(labels[t], (3 * t + 1) % 4);
     }
   }
+  /* the diagnostic gate (integrated.selftalk_gate), the same labels 1 0 3 2 1 0 heard a step
+   * later: move, the move said at step 2 is heard at 3 as grasp (no touch, so the grasp is not
+   * done); ahead, the caretaker says reach from step 1 (the hand far from the object), so every
+   * label ahead of it is heard as reach */
+  const int gated[2][6] = {{-1, ST_PRIM_OPEN, ST_PRIM_REACH, ST_PRIM_GRASP, ST_PRIM_GRASP, ST_PRIM_OPEN},
+                           {-1, ST_PRIM_REACH, ST_PRIM_REACH, ST_PRIM_REACH, ST_PRIM_REACH, ST_PRIM_REACH}};
+  const int gates[2] = {ST_SELFTALK_GATE_MOVE, ST_SELFTALK_GATE_AHEAD};
+  for (int g = 0; g < 2; g++) {
+    memset(&tk, 0, sizeof tk);
+    p->cfg.integrated_selftalk_gate = gates[g];
+    const stWords words = st_int_words(p, ST_WORDS_SELFTALK);
+    CU_ASSERT_EQUAL_FATAL(st_episode_run(p, &ws, &e, &ctl, &words, &sc, NULL, NULL, err, sizeof err), ST_OK);
+    for (int t = 0; t < 6; t++) {
+      for (int m = 0; m < ST_NET_NLING; m++)
+        CU_ASSERT_EQUAL(tk.heard[t][ST_NET_IN_LING + m], m == gated[g][t] ? 10.0 : 0.0);
+      CU_ASSERT_EQUAL(labels[t], (3 * t + 1) % 4); /* the labels themselves are the controller's */
+    }
+  }
+  p->cfg.integrated_selftalk_gate = ST_SELFTALK_GATE_NONE;
   /* a controller without linguistic outputs cannot talk to itself */
   ctl.talks = 0;
   const stWords st = st_int_words(p, ST_WORDS_SELFTALK);

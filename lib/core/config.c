@@ -169,6 +169,8 @@ static const stageKey g_stage_keys[] = {
     {"integrated", "fail_end", I_ | P_, "the primitive stages' own trials end on failure by "
                                         "main-prim's rule (its chained trials read it: "
                                         "stage.chain_trials)", NULL},
+    {"integrated", "selftalk_gate", I_ | PR_ | PG_, "it acts on self talk only",
+     "the integration test always hears the caretaker"},
     {"integrated", "first_generation", I_ | PG_, "it defines the integrated stage",
      "only the generalisation test's exclusion rule reads the training's plan (which trials were "
      "autonomous in the last generation)"},

@@ -205,14 +205,37 @@ typedef struct hearing {
   stCaretaker ct;
   int last_label; /* self talk: the label of the previous step */
   int handover;   /* hand-over: the step the word was handed over at, -1 before */
+  int gate;       /* self talk: integrated.selftalk_gate */
 } hearing;
+
+/* self talk's label as heard, through the diagnostic gate (integrated.selftalk_gate): the
+ * caretaker is followed in step, unheard, to tell whether the label is ahead of the action */
+static int gated(hearing *h, const stProtocol *p, int step, const stQuantities *q,
+                 const stWorld *w) {
+  const int label = h->last_label;
+  switch (h->gate) {
+    case ST_SELFTALK_GATE_MOVE:
+      return label == ST_PRIM_MOVE &&
+                     !st_caretaker_done(&h->ct, &p->fitness, ST_PRIM_GRASP, q, &w->contacts)
+                 ? ST_PRIM_GRASP
+                 : label;
+    case ST_SELFTALK_GATE_AHEAD: {
+      const int ct = st_caretaker_word(&h->ct, &p->fitness, step, q, &w->contacts);
+      return label > ct ? ct : label;
+    }
+    default: return label;
+  }
+}
 
 static int heard_word(hearing *h, const stProtocol *p, const stWords *words, int step,
                       const stQuantities *q, const stWorld *w) {
   switch (words->source) {
     case ST_WORDS_FIXED: return words->word;
     case ST_WORDS_CARETAKER: return st_caretaker_word(&h->ct, &p->fitness, step, q, &w->contacts);
-    case ST_WORDS_SELFTALK: return step == 0 ? -1 : h->last_label;
+    case ST_WORDS_SELFTALK: {
+      const int label = gated(h, p, step, q, w); /* the gate's caretaker hears every step */
+      return step == 0 ? -1 : label;
+    }
     case ST_WORDS_HANDOVER:
       if (h->handover < 0 && st_caretaker_word(&h->ct, &p->fitness, step, q, &w->contacts) >= words->word)
         h->handover = step;
@@ -278,6 +301,7 @@ stStatus st_episode_run_rollin(const stProtocol *p, stWorkspace *ws, const stEpi
   st_caretaker_init(&h.ct, &p->cfg);
   h.last_label = -1;
   h.handover = -1;
+  h.gate = p->cfg.integrated_selftalk_gate;
   double in[ST_NET_MAX_IN] = {0}, out[ST_NET_MAX_OUT] = {0}, ling[ST_NET_NLING];
   stQuantities q;
   st_quantities(w, &p->sensor, &q);
