@@ -128,7 +128,7 @@ extern "C" {
   INT(integrated, steps, 240, 1, 100000, "integrated trial length, control steps (12 s)") \
   INT(integrated, hold_steps, 20, 0, 100000, "a trial ends (S = 1 for the rest) when the object was within the target radius while lifted more than this many steps ago and is still lifted") \
   INT(integrated, focus_bonus_steps, 3, 1, 100000, "bonus when the object is lifted with the focus on the target for this many consecutive steps (thesis 2.9.4.1)") \
-  ENUM(integrated, selftalk_gate, 0, "none|move|ahead", "diagnostic, not the thesis: what self talk lets the robot hear of its own label; none, all of it (the thesis); move, *move* is heard as *grasp* until the caretaker's grasp condition holds; ahead, a label ahead of the caretaker's word at that step is heard as the caretaker's word (docs/PROTOCOL.md)") \
+  ENUM(integrated, selftalk_gate, 0, "none|move|ahead", "diagnostic, not the thesis: self talk heard as said (none); *move* heard as *grasp* until the grasp holds (move); a word ahead of the caretaker's heard as his (ahead) (PROTOCOL)") \
   ENUM(integrated, fail_end, 0, "penalty|exact|runout", "object fell: penalty ends the trial (S 0, P fitness.fail_penalty after); exact ends it once the rest cannot change its result; runout never (PROTOCOL, Speed)") \
   INT(prediction, window, 20, 1, 100000, "steps looked back before a switch of the caretaker's word (eq. 2.18, 2.20)") \
   INT(prediction, bonus_window, 5, 0, 100000, "a switch predicted fewer than this many steps early earns the bonus (eq. 2.23)") \
