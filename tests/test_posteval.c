@@ -472,6 +472,25 @@ static void test_post_load_population(void) {
 
 /* the journal's reader takes only what a trial can give (lib/posteval/journal.c): each line
  * below contradicts itself and is refused naming the journal and its line 5 */
+/* the fingerprint covers the keys that differ from their defaults, not config.ini's comments,
+ * version line or keys at their defaults (a new key or a reworded description leaves a
+ * half-done test resumable). The values: FNV-1a 64 by hand (Python) over "1;" "0;" "ST-CT\0"
+ * "0;" (robustness, own words, the condition, no individuals), preceded for the gate by
+ * "[integrated]\n\0" "selftalk_gate = ahead\n\0" */
+static void test_post_fingerprint(void) {
+  stConfig cfg;
+  st_config_default(&cfg);
+  char err[256] = "";
+  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
+                  0x5a85cdc9a96eb982ull);
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&cfg, "integrated.steps=240", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
+                  0x5a85cdc9a96eb982ull); /* a key set to its default is no change */
+  CU_ASSERT_EQUAL_FATAL(st_config_set(&cfg, "integrated.selftalk_gate=ahead", err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
+                  0xb20072b883c5df39ull);
+}
+
 static void test_post_journal_contradictions(void) {
   const char *head = "# selftalk posteval journal 1\n# fingerprint 00000000000000ab\n# units 4\n"
                      "unit,success,reached_step,steps_run,end,unstable,open_jumped,heard\n";
@@ -520,4 +539,5 @@ void st_suite_posteval(void) {
   ST_ADD_TEST(test_post_load_run);
   ST_ADD_TEST(test_post_load_population);
   ST_ADD_TEST(test_post_journal_contradictions);
+  ST_ADD_TEST(test_post_fingerprint);
 }

@@ -34,18 +34,31 @@ static uint64_t fnv_int(uint64_t h, long v) {
 
 static uint64_t fnv_str(uint64_t h, const char *s) { return fnv(h, s, strlen(s) + 1); }
 
-/* the configuration as config.ini has it (every key, resolved) */
+/* the configuration: its keys that differ from their defaults, as config.ini writes them
+ * ("[section]" and "name = value"). Not the comments, the version line or keys at their
+ * defaults: a new key, a reworded description or a new release leave a half-done test
+ * resumable (what the library's code does is not fingerprinted, here as in evolve's resume) */
 static uint64_t fnv_config(uint64_t h, const stConfig *cfg) {
-  FILE *f = tmpfile();
-  if (!f || st_config_write(f, cfg) != 0) {
+  stConfig def;
+  st_config_default(&def);
+  FILE *f = tmpfile(), *d = tmpfile();
+  if (!f || !d || st_config_write(f, cfg) != 0 || st_config_write(d, &def) != 0) {
     if (f) fclose(f);
+    if (d) fclose(d);
     return fnv_str(h, "config: unwritable"); /* then no journal matches by chance either */
   }
   rewind(f);
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, f)) > 0) h = fnv(h, buf, n);
+  rewind(d);
+  char line[ST_CONFIG_STR_MAX + 512], dline[sizeof line], section[sizeof line] = "";
+  /* both files have the same lines in the same order: the key table's */
+  while (fgets(line, sizeof line, f) && fgets(dline, sizeof dline, d)) {
+    if (line[0] == '[') strcpy(section, line);
+    if (line[0] == '#' || line[0] == '[' || line[0] == '\n' || !strcmp(line, dline)) continue;
+    h = fnv_str(h, section);
+    h = fnv_str(h, line);
+  }
   fclose(f);
+  fclose(d);
   return h;
 }
 

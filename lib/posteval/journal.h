@@ -10,9 +10,9 @@
 
 #define ST_POST_JOURNAL "posteval.journal"
 
-/* What the results depend on: the resolved configuration, the test, its words and condition,
- * and every individual (run, label, rank, generation, exclusion, genes). A journal of another
- * fingerprint belongs to another test. */
+/* What the results depend on: the configuration's keys away from their defaults, the test,
+ * its words and condition, and every individual (run, label, rank, generation, exclusion,
+ * genes). A journal of another fingerprint belongs to another test. */
 uint64_t st__post_fingerprint(const stConfig *cfg, stPostTest test, int variant,
                               const char *condition, const stPostIndividual *ind, int nind);
 
