@@ -470,8 +470,6 @@ static void test_post_load_population(void) {
   ST_ASSERT_CONTAINS(err, "data: neither population.genome nor checkpoint");
 }
 
-/* the journal's reader takes only what a trial can give (lib/posteval/journal.c): each line
- * below contradicts itself and is refused naming the journal and its line 5 */
 /* the fingerprint covers the keys that differ from their defaults, not config.ini's comments,
  * version line or keys at their defaults (a new key or a reworded description leaves a
  * half-done test resumable). The values: FNV-1a 64 by hand (Python) over "1;" "0;" "ST-CT\0"
@@ -491,6 +489,8 @@ static void test_post_fingerprint(void) {
                   0xb20072b883c5df39ull);
 }
 
+/* the journal's reader takes only what a trial can give (lib/posteval/journal.c): each line
+ * below contradicts itself and is refused naming the journal and its line 5 */
 static void test_post_journal_contradictions(void) {
   const char *head = "# selftalk posteval journal 1\n# fingerprint 00000000000000ab\n# units 4\n"
                      "unit,success,reached_step,steps_run,end,unstable,open_jumped,heard\n";

@@ -249,6 +249,11 @@ typedef struct stConfigKey {
 int st_config_nkeys(void);
 const stConfigKey *st_config_key(int i);
 
+/* Whether key i (0 <= i < st_config_nkeys()) of cfg differs from base's, and its value as
+ * config.ini writes it (st_config_write: "%.17g" reals, enum names, true/false). */
+int st_config_key_differs(const stConfig *cfg, const stConfig *base, int i);
+void st_config_format(const stConfig *cfg, int i, char *buf, size_t n);
+
 /* Index of "section.key" or -1. */
 int st_config_find(const char *section, const char *name);
 

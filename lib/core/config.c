@@ -964,6 +964,18 @@ stStatus st_config_set_all(stConfig *cfg, const char *const *assignments, int n,
   return ST_OK;
 }
 
+int st_config_key_differs(const stConfig *cfg, const stConfig *base, int i) {
+  ST_ASSERT(cfg && base);
+  ST_ASSERT(i >= 0 && i < NKEYS);
+  return !is_default(cfg, base, &g_keys[i]);
+}
+
+void st_config_format(const stConfig *cfg, int i, char *buf, size_t n) {
+  ST_ASSERT(cfg && buf && n > 0);
+  ST_ASSERT(i >= 0 && i < NKEYS);
+  format_value(cfg, &g_keys[i], buf, n);
+}
+
 static void format_value(const stConfig *cfg, const stConfigKey *k, char *buf, size_t n) {
   switch (k->type) {
     case ST_CFG_INT: snprintf(buf, n, "%d", *CFIELD(cfg, k, int)); break;

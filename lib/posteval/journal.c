@@ -34,31 +34,23 @@ static uint64_t fnv_int(uint64_t h, long v) {
 
 static uint64_t fnv_str(uint64_t h, const char *s) { return fnv(h, s, strlen(s) + 1); }
 
-/* the configuration: its keys that differ from their defaults, as config.ini writes them
+/* the configuration: its keys that differ from their defaults, each as config.ini writes it
  * ("[section]" and "name = value"). Not the comments, the version line or keys at their
  * defaults: a new key, a reworded description or a new release leave a half-done test
  * resumable (what the library's code does is not fingerprinted, here as in evolve's resume) */
 static uint64_t fnv_config(uint64_t h, const stConfig *cfg) {
   stConfig def;
   st_config_default(&def);
-  FILE *f = tmpfile(), *d = tmpfile();
-  if (!f || !d || st_config_write(f, cfg) != 0 || st_config_write(d, &def) != 0) {
-    if (f) fclose(f);
-    if (d) fclose(d);
-    return fnv_str(h, "config: unwritable"); /* then no journal matches by chance either */
+  char text[ST_CONFIG_STR_MAX + 160], value[ST_CONFIG_STR_MAX + 32];
+  for (int i = 0; i < st_config_nkeys(); i++) {
+    if (!st_config_key_differs(cfg, &def, i)) continue;
+    const stConfigKey *k = st_config_key(i);
+    st_config_format(cfg, i, value, sizeof value);
+    snprintf(text, sizeof text, "[%s]\n", k->section);
+    h = fnv_str(h, text);
+    snprintf(text, sizeof text, "%s = %s\n", k->name, value);
+    h = fnv_str(h, text);
   }
-  rewind(f);
-  rewind(d);
-  char line[ST_CONFIG_STR_MAX + 512], dline[sizeof line], section[sizeof line] = "";
-  /* both files have the same lines in the same order: the key table's */
-  while (fgets(line, sizeof line, f) && fgets(dline, sizeof dline, d)) {
-    if (line[0] == '[') strcpy(section, line);
-    if (line[0] == '#' || line[0] == '[' || line[0] == '\n' || !strcmp(line, dline)) continue;
-    h = fnv_str(h, section);
-    h = fnv_str(h, line);
-  }
-  fclose(f);
-  fclose(d);
   return h;
 }
 
