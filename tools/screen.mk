@@ -7,6 +7,7 @@
 # A stopped screen continues where it stopped (evolve --resume, posteval --resume).
 #
 #   make -f tools/screen.mk [CAND=control] [POP=prims_s4] [GENS=20] [SEED=1] [OUT=runs/screen] [THREADS=0]
+#                           [SET='section.key=value ...']
 #   make -f tools/screen.mk list          the candidates and their keys
 #   make -f tools/screen.mk report        the table rows of every screen under OUT
 #
@@ -19,6 +20,19 @@ SEED ?= 1
 OUT ?= runs/screen
 THREADS ?= 0
 PYTHON ?= /usr/bin/python3
+# SET: settings for the screen's evolution and both its integration tests alike (as
+# tools/replicate.mk's), e.g. SET='postures.reach_palm_down=1 dynamics.lcp=schur': a candidate's
+# starts are then those of its test too. A screen's directory is named after SET's values, so
+# screens of one candidate under other settings never share (and resume) one directory.
+SET ?=
+empty :=
+space := $(empty) $(empty)
+SET_BAD := $(strip $(foreach s,$(SET),$(if $(findstring =,$(s)),,$(s))))
+ifneq ($(SET_BAD),)
+$(error SET: '$(firstword $(SET_BAD))': expected section.key=value)
+endif
+SET_ARGS := $(foreach s,$(SET),--set $(s))
+SET_TAG := $(if $(SET),-$(subst =,,$(subst .,,$(subst $(space),-,$(strip $(SET))))))
 
 # the candidates: config keys on configs/main_prim.cfg (one line each; add a row to add one)
 KEYS_control :=
@@ -56,17 +70,22 @@ KEYS_handover_chain_gated_vary_extra := $(KEYS_handover_chain_gated_vary) --set 
 # too few from prims_s1 and prims_s4, chain_candidates/sched30_s*)
 KEYS_handover_chain_gated_vary_sched := $(KEYS_handover_chain_gated_vary_extra) \
   --set postures.vary_replace_generations=30
+# the chain stage as configs/chain_prim.cfg ships it, continued from a chain run's final population
+# (POP=chain_sN): its drawn starts as they were at its end (extra, no replace phase), its stop rule
+# off as every screen's; with SET's starts this is issue 46's screen (a) (docs/PROTOCOL.md)
+KEYS_chain_continued := $(KEYS_handover_chain_gated_vary_extra) --set stage.chain_complete=fixed_chained \
+  --set postures.vary_replace_generations=0
 CANDIDATES := control grasp_gap ik vary handover handover_fallback chain handover_chain chain_sum \
   chain_gated handover_chain_gated handover_chain_sum handover_chain_gated_mut \
   handover_chain_gated_flex handover_chain_gated_highflex handover_chain_gated_vary handover_chain_gated_vary_extra handover_chain_gated_vary_sched \
-  handover_elite_chain_gated
+  handover_elite_chain_gated chain_continued
 
 ifeq ($(filter $(CAND),$(CANDIDATES)),)
 $(error CAND=$(CAND): expected one of $(CANDIDATES))
 endif
 
 POPFILE := $(if $(wildcard data/evolved/$(POP)/population.genome),data/evolved/$(POP)/population.genome,$(POP))
-DIR := $(OUT)/$(CAND)-$(notdir $(basename $(POP:%/population.genome=%)))-s$(SEED)
+DIR := $(OUT)/$(CAND)-$(notdir $(basename $(POP:%/population.genome=%)))-s$(SEED)$(SET_TAG)
 THREADS_ARG := $(if $(filter-out 0,$(THREADS)),--threads $(THREADS))
 SHELL := /bin/bash
 
@@ -85,13 +104,13 @@ report:
 $(DIR)/population.genome:
 	mkdir -p $(DIR) && set -o pipefail && ./apps/evolve configs/main_prim.cfg --seed $(SEED) \
 	  --generations $(GENS) --out $(DIR) --resume $(THREADS_ARG) \
-	  --set stage.init_population=$(POPFILE) --set ga.success_genotypes=100 $(KEYS_$(CAND)) \
+	  --set stage.init_population=$(POPFILE) --set ga.success_genotypes=100 $(KEYS_$(CAND)) $(SET_ARGS) \
 	  2>&1 | tee -a $(DIR)/progress.log
 
 $(DIR)/integration/summary.csv: $(DIR)/population.genome
 	./apps/posteval integration configs/prims.cfg $(DIR)/population.genome --out $(DIR)/integration \
-	  --resume $(THREADS_ARG)
+	  --resume $(THREADS_ARG) $(SET_ARGS)
 
 $(DIR)/integration-nowords/summary.csv: $(DIR)/population.genome
 	./apps/posteval integration configs/prims.cfg $(DIR)/population.genome --no-words \
-	  --out $(DIR)/integration-nowords --resume $(THREADS_ARG)
+	  --out $(DIR)/integration-nowords --resume $(THREADS_ARG) $(SET_ARGS)
