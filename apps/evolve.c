@@ -66,6 +66,11 @@ int main(int argc, char **argv) {
     out = dir;
   }
   printf("evolve: %s, seed %d, output in %s\n", ca.config_path, cfg.run_seed, out);
+  /* the two settings that set a run's protocol apart most (SPEC 13): which starts, which solver */
+  printf("evolve: reach starts %s (postures.reach_palm_down); contact %s%s\n",
+         cfg.postures_reach_palm_down ? "palm down" : "position only, palm as the arm leaves it",
+         cfg.stage_stages == ST_STAGES_SIMPLE ? "none (simple-prim is kinematic)" : "ODE, dynamics.lcp = ",
+         cfg.stage_stages == ST_STAGES_SIMPLE ? "" : st_config_enum_name("dynamics", "lcp", cfg.dynamics_lcp));
   fflush(stdout);
   stEvolveDef def = {&cfg, out, threads, generations, resume, stdout,
                      app_mpi_evaluator(threads, out, stdout)};

@@ -427,6 +427,44 @@ static void test_int_trial_table(void) {
   st_protocol_destroy(p);
 }
 
+/* integrated.trial_order (SPEC 13): mod4 gives trials 0-7 types 0 1 2 3 0 1 2 3, so the odd
+ * trials (ST-CT's self talk, CT's silence) have only types 1 and 3, target 1; pairs gives
+ * 0 0 1 1 2 2 3 3, every type once among the even and once among the odd trials. The trial's
+ * offsets belong to its index, not its type: the same deviation from its posture's position
+ * in both orders. */
+static void test_int_trial_order(void) {
+  const stTestFixture *fx = st_test_fixture();
+  CU_ASSERT_PTR_NOT_NULL_FATAL(fx->robot);
+  static const int want[2][8] = {{0, 1, 2, 3, 0, 1, 2, 3}, {0, 0, 1, 1, 2, 2, 3, 3}};
+  stIntegratedDef d = small_def(240, 20);
+  stEpisodeSpec e[2][8];
+  for (int order = 0; order < 2; order++) {
+    stConfig cfg = fx->cfg;
+    cfg.integrated_trial_order = order ? ST_TRIAL_ORDER_PAIRS : ST_TRIAL_ORDER_MOD4;
+    stProtocol *p = NULL;
+    char err[512] = "";
+    CU_ASSERT_EQUAL_FATAL(st_protocol_create(&cfg, &p, err, sizeof err), ST_OK);
+    unsigned seen[2] = {0, 0}; /* types seen by even and odd trials, as bit masks */
+    for (int i = 0; i < 8; i++) {
+      const int k = st_int_trial_type(p, i);
+      CU_ASSERT_EQUAL(k, want[order][i]);
+      seen[i % 2] |= 1u << k;
+      st_int_trial(p, &d, 3, 0, i, &e[order][i]);
+      CU_ASSERT_EQUAL(memcmp(e[order][i].qhat0, p->posture[ST_PRIM_REACH][k], sizeof e[order][i].qhat0), 0);
+      CU_ASSERT(fabs(e[order][i].target[0] - p->scene.target[k % 2][0]) <= 0.02);
+      if (order) { /* the same offsets as trial i under mod4 */
+        const int k0 = want[0][i];
+        CU_ASSERT(fabs((e[1][i].obj[0] - p->scene.obj_pos[k][0]) - (e[0][i].obj[0] - p->scene.obj_pos[k0][0])) < 1e-12);
+        CU_ASSERT(fabs((e[1][i].target[1] - p->scene.target[k % 2][1]) -
+                       (e[0][i].target[1] - p->scene.target[k0 % 2][1])) < 1e-12);
+      }
+    }
+    CU_ASSERT_EQUAL(seen[0], order ? 0xfu : 0x5u); /* even trials: types 0, 2 under mod4 */
+    CU_ASSERT_EQUAL(seen[1], order ? 0xfu : 0xau); /* odd trials: types 1, 3 under mod4 */
+    st_protocol_destroy(p);
+  }
+}
+
 /* three population files of 3 genotypes each (gene 0 = 16 f + i identifies genotype i of file
  * f), top 2, population 8: files f0, f1 by the pattern, then f2: f0g0 f0g1 f1g0 f1g1 f2g0 f2g1,
  * then repeated: f0g0 f0g1. Base genes copied, new genes grown per individual (the two copies
@@ -490,5 +528,6 @@ void st_suite_integrated(void) {
   ST_ADD_TEST(test_int_config_rules);
   ST_ADD_TEST(test_int_selftalk_loop);
   ST_ADD_TEST(test_int_trial_table);
+  ST_ADD_TEST(test_int_trial_order);
   ST_ADD_TEST(test_int_assembly);
 }

@@ -417,9 +417,11 @@ static void test_post_load_run(void) {
   ST_ASSERT_CONTAINS(err, "key 'integrated.first_generation' is true, the config's is false");
   /* a run trained from other reach starts than the test's */
   other = stct;
-  other.postures_reach_palm_down = 1;
+  other.postures_reach_palm_down = !stct.postures_reach_palm_down;
   CU_ASSERT_EQUAL(st_post_load_run(sub, &other, 1, &ind, err, sizeof err), ST_ERR_ARG);
-  ST_ASSERT_CONTAINS(err, "key 'postures.reach_palm_down' is false, the config's is true");
+  ST_ASSERT_CONTAINS(err, stct.postures_reach_palm_down
+                              ? "key 'postures.reach_palm_down' is true, the config's is false"
+                              : "key 'postures.reach_palm_down' is false, the config's is true");
   fake_run(sub, "configs/integrated_stct.cfg", "2,1,1,1,1,0,10,0,1,0,0,0,0,0,1,0,0");
   CU_ASSERT_EQUAL(st_post_load_run(sub, &stct, 1, &ind, err, sizeof err), ST_ERR_PARSE);
   ST_ASSERT_CONTAINS(err, "fitness.csv: no row for generation 1, the last of best.genome");

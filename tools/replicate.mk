@@ -75,7 +75,8 @@ $(error PROTOCOL=$(PROTOCOL): expected chain or thesis)
 endif
 
 # SET: settings (section.key=value, space-separated) for every simulated step, evolution and
-# post-evaluation alike, e.g. SET=postures.reach_palm_down=1 (docs/PROTOCOL.md, "Why open is
+# post-evaluation alike, e.g. SET=postures.reach_palm_down=0 (the configs ship the study's palm-down
+# reach starts and dynamics.lcp = schur; docs/PROTOCOL.md, "The study's starts and solver"; "Why open is
 # rarely jumped"): each step's own ..._ARGS come first, then these
 SET ?=
 SET_BAD := $(strip $(foreach s,$(SET),$(if $(findstring =,$(s)),,$(s))))

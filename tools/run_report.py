@@ -18,6 +18,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
 import plot_fitness  # noqa: E402
+import runconfig  # noqa: E402
 from plot_fitness import PRIMS, read as read_fitness  # noqa: E402
 from runs_summary import success_genotypes  # noqa: E402
 
@@ -74,6 +75,24 @@ def best_line(row):
             f"{float(row['best']):.2f}, solves {sum(solved)}/16 trials ({per})")
 
 
+def protocol_line(d):
+    """which reach starts and contact solver the run used (SPEC 13), from its config.ini"""
+    bool_ = lambda t: {"true": True, "1": True, "yes": True, "false": False, "0": False, "no": False}[t]
+    try:
+        down = runconfig.value(d, "postures", "reach_palm_down", None, bool_)
+        lcp = runconfig.value(d, "dynamics", "lcp", None, str)
+        stages = runconfig.value(d, "stage", "stages", None, str)
+    except (ValueError, KeyError) as e:
+        die(f"{d}/config.ini: {e}")
+    if stages is None:
+        return f"reach starts and contact solver: not recorded (no {d}/config.ini)"
+    # a config.ini made before a key existed reads with the key's default, as evolve reads it
+    down = bool(down)
+    starts = "palm down" if down else "position only, palm as the arm leaves it"
+    contact = "none (simple-prim is kinematic)" if stages == "simple_prim" else f"ODE, dynamics.lcp = {lcp or 'dense'}"
+    return f"reach starts {starts} (postures.reach_palm_down); contact {contact}"
+
+
 def plot(csv_path, png):
     """draws the PNG with this interpreter; returns the command, and an error or None"""
     cmd = [sys.executable, "tools/plot_fitness.py", csv_path, "-o", png]
@@ -91,6 +110,7 @@ def main():
     rows = read_rows(csv_path)
     need = success_genotypes(d)
     print(f"\n== what the run gave ({d})")
+    print(f"  {protocol_line(d)}")
     for line in stage_lines(rows, need):
         print(f"  {line}")
     print(f"  {best_line(rows[-1])}")

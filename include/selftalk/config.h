@@ -124,7 +124,8 @@ extern "C" {
   ENUM(integrated, fitness_odd, 0, "integrated|prediction", "fitness of odd trials (Table 2.1)") \
   BOOL(integrated, first_generation, 1, "the first generation hears the caretaker in every trial, scored by the integrated fitness with bonuses x first_bonus_factor (thesis 2.9.4.1: all conditions but NI)") \
   REAL(integrated, first_bonus_factor, 10.0, 0.0, 1000.0, "bonus multiplier of the first generation's integrated fitness (thesis 2.9.4.1)") \
-  INT(integrated, trials, 8, 1, 32, "trials per individual; trial i has type k = i mod 4: reach posture k, object position k, target k mod 2 (thesis 2.9, SPEC 10)") \
+  INT(integrated, trials, 8, 1, 32, "trials per individual; trial i has type k (integrated.trial_order): reach posture k, object position k, target k mod 2 (thesis 2.9, SPEC 10)") \
+  ENUM(integrated, trial_order, 0, "mod4|pairs", "trial i's type k: i mod 4 (mod4), or (i div 2) mod 4, each type once in each parity (pairs); the thesis allows both (SPEC 13)") \
   INT(integrated, steps, 240, 1, 100000, "integrated trial length, control steps (12 s)") \
   INT(integrated, hold_steps, 20, 0, 100000, "a trial ends (S = 1 for the rest) when the object was within the target radius while lifted more than this many steps ago and is still lifted") \
   INT(integrated, focus_bonus_steps, 3, 1, 100000, "bonus when the object is lifted with the focus on the target for this many consecutive steps (thesis 2.9.4.1)") \
@@ -296,6 +297,8 @@ enum { ST_CFG_WORDS_NONE = 0, ST_CFG_WORDS_CARETAKER, ST_CFG_WORDS_SELFTALK };
 enum { ST_CFG_FIT_INTEGRATED = 0, ST_CFG_FIT_PREDICTION };
 /* integrated.fail_end */
 enum { ST_FAIL_END_PENALTY = 0, ST_FAIL_END_EXACT, ST_FAIL_END_RUNOUT };
+/* integrated.trial_order */
+enum { ST_TRIAL_ORDER_MOD4 = 0, ST_TRIAL_ORDER_PAIRS };
 /* integrated.selftalk_gate */
 enum { ST_SELFTALK_GATE_NONE = 0, ST_SELFTALK_GATE_MOVE, ST_SELFTALK_GATE_AHEAD };
 /* stage.chain_combine */

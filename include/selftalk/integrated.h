@@ -177,6 +177,10 @@ void st_int_combine(double bonus, double scale, const stIntPlan *plan,
 void st_int_episode(const stProtocol *p, const stIntegratedDef *def, int k, int t, stRng *rng,
                     uint64_t seed_key, stEpisodeSpec *e);
 
+/* Integrated trial i's type k (reach posture and object position k, target k mod 2):
+ * i mod 4, or with integrated.trial_order = pairs (i div 2) mod 4 (SPEC 13). */
+int st_int_trial_type(const stProtocol *p, int i);
+
 /* Trial i of a generation for an individual: type k = i mod 4, target k mod 2, offsets keyed
  * by (seed, generation, trial) - common to every individual - and the solver's generator by
  * (seed, generation, individual, trial). */

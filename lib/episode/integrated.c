@@ -23,6 +23,13 @@ void st_int_episode(const stProtocol *p, const stIntegratedDef *def, int k, int 
   e->seed_key = seed_key;
 }
 
+int st_int_trial_type(const stProtocol *p, int i) {
+  ST_ASSERT(p && i >= 0);
+  /* pairs: trials 2k and 2k+1 share type k, so each parity (the caretaker's trials and the
+   * others in ST-CT and CT) has every type once in 8 trials */
+  return p->cfg.integrated_trial_order == ST_TRIAL_ORDER_PAIRS ? i / 2 % ST_NPOSTURE : i % ST_NPOSTURE;
+}
+
 void st_int_trial(const stProtocol *p, const stIntegratedDef *def, int generation, int individual,
                   int i, stEpisodeSpec *e) {
   ST_ASSERT(p && def && e);
@@ -31,7 +38,7 @@ void st_int_trial(const stProtocol *p, const stIntegratedDef *def, int generatio
   stRng rng = st_rng_keyed(seed, ST_RNG_INTEGRATED, (uint64_t)generation, 0, (uint64_t)i);
   const uint64_t key =
       st_rng_keyed(seed, ST_RNG_SOLVER, (uint64_t)generation, (uint64_t)individual, (uint64_t)i).key;
-  const int k = i % ST_NPOSTURE;
+  const int k = st_int_trial_type(p, i);
   st_int_episode(p, def, k, k % 2, &rng, key, e);
 }
 
