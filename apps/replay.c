@@ -308,7 +308,7 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
   const int n = snprintf(ln, lz, "trial %d integrated k=%d words=%s fitness=%s success=%d "
                          "steps=%ld/%ld end=%s reached_step=%d sum_S=%.17g sum_P=%.17g "
                          "focus_bonus=%d move_bonus=%d bonus=%.17g points=%.17g", trial,
-                         trial % ST_NPOSTURE, st_word_source_name(plan.words),
+                         st_int_trial_type(p, trial), st_word_source_name(plan.words),
                          st_int_fitness_name(plan.fitness), r.success, r.steps_run, r.steps,
                          st_trial_end_name((stTrialEnd)r.end), r.reached_step, r.sum_s, r.sum_p, r.focus_bonus, r.success,
                          bonus, st_int_trial_points(&r));
@@ -317,7 +317,7 @@ static void replay_integrated(const stProtocol *p, int generation, int index, in
              r.reached_step >= 0, pred.f_step, pred.f_switch, pred.b_pred);
   fail_end_note(p, ln, lz);
   printf("%s\n", ln);
-  page_summary(trace, "integrated trial %d (posture %d, words: %s)", trial, trial % ST_NPOSTURE,
+  page_summary(trace, "integrated trial %d (posture %d, words: %s)", trial, st_int_trial_type(p, trial),
                st_word_source_name(plan.words));
   trace->sum = (trialPageSummary){trace->title, ln, r.success, st_trial_end_name((stTrialEnd)r.end), 1, bonus,
                                   r.steps_run, r.steps};
