@@ -11,7 +11,8 @@
 #   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable, priced
 #                   first (tools/replicate.mk; README.md, "Replicating the study")
 #   make fuzz       fuzz targets (clang's libFuzzer, ASan + UBSan) and seed corpora in build-fuzz/;
-#                   make fuzz-run [FUZZ_RUNS=1000000] runs each (not part of make test)
+#                   make fuzz-run [FUZZ_RUNS=1000000] runs each, then tests/tools_sweep.py --full
+#                   (not part of make test)
 #   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
 #                   to move results (tests/check_golden.sh)
 #   make install PREFIX=/usr/local
@@ -296,7 +297,11 @@ fuzz-run: fuzz
 	       -artifact_prefix=$(FUZZ_DIR)/$$t- $(FUZZ_DIR)/corpus/$$t > $(FUZZ_DIR)/$$t.log 2>&1; then \
 	    grep -E '^(Done|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)' $(FUZZ_DIR)/$$t.log; \
 	  else bad=1; tail -40 $(FUZZ_DIR)/$$t.log; fi; \
-	done; exit $$bad
+	done; \
+	echo "== tools_sweep --full: every Python tool on malformed CSVs, every value in every column"; \
+	nice -n $(FUZZ_NICE) $(PYTHON) tests/tools_sweep.py $(FUZZ_DIR)/tools-sweep --full \
+	  > $(FUZZ_DIR)/tools-sweep.log 2>&1 || bad=1; tail -20 $(FUZZ_DIR)/tools-sweep.log; \
+	exit $$bad
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/selftalk $(DESTDIR)$(PREFIX)/lib/pkgconfig \

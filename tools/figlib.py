@@ -88,9 +88,19 @@ FITNESS_WHAT = "the fitness.csv of ./apps/evolve"
 WRITTEN_NAN = {"mean_steps_to_target"}
 
 
+# a line ends at \r\n, \r or \n (str.splitlines would also end one at \f, \x1c, \u2028...)
+_EOL = re.compile(r"\r\n|\r|\n")
+
+
 def line_of(data, offset):
     """the line number of a byte offset"""
-    return data[:offset].count(b"\n") + 1
+    return len(re.findall(rb"\r\n|\r|\n", data[:offset])) + 1
+
+
+def lines_of(text):
+    """the text's lines, without their ends"""
+    lines = _EOL.split(text)
+    return lines[:-1] if lines and lines[-1] == "" else lines
 
 
 def _text(path, what):
@@ -137,7 +147,7 @@ def read_csv(path, columns, what, key=None, increasing=False, schema=None, live=
     text = _text(path, what)
     if live and not text.endswith(("\n", "\r")):
         text = text[:max(text.rfind("\n"), text.rfind("\r")) + 1]
-    lines = [(n, s) for n, s in enumerate(text.splitlines(), start=1)
+    lines = [(n, s) for n, s in enumerate(lines_of(text), start=1)
              if s.strip() and not s.startswith("#")]
     if live and len(lines) < 2:
         return []
@@ -171,7 +181,7 @@ def read_csv(path, columns, what, key=None, increasing=False, schema=None, live=
             try:
                 row[c] = conv(row[c])
             except ValueError as e:
-                die(f"{path}:{n}: {c} '{row[c][:40]}' (expected {expect}{', ' + str(e) if str(e) else ''})")
+                die(f"{path}:{n}: {c} {row[c][:40]!r} (expected {expect}{', ' + str(e) if str(e) else ''})")
         row["_line"], row["_raw"] = n, raw
         if keys:
             k = tuple(row[c] for c in keys)
@@ -195,15 +205,17 @@ GENERATION = next(iter(csvschema.pick(csvschema.FITNESS, "generation")))
 def read_text(path, what):
     """the lines of a text file (without their ends), refused with FILE:LINE when it holds a NUL
     byte or is not UTF-8"""
-    return _text(path, what).splitlines()
+    return lines_of(_text(path, what))
 
 
 def read_fitness(path, columns=(GENERATION, "best"), what=FITNESS_WHAT, live=False):
     """the rows of a run's fitness.csv (./apps/evolve), one per generation in increasing order,
     every column of the library's table it has checked (FITNESS); columns: those it must have
     (best_t0 and the like: the per-trial columns' names)"""
-    return read_csv(path, _kinds(list(columns), {}, FITNESS), what, key=GENERATION,
-                    increasing=True, schema=FITNESS, live=live)
+    kinds = _kinds(list(columns), {}, FITNESS)
+    if len(kinds) != len(set(columns)):  # a name the library's table lacks: the tool's error
+        raise KeyError(f"not columns of fitness.csv: {set(columns) - set(kinds)}")
+    return read_csv(path, kinds, what, key=GENERATION, increasing=True, schema=FITNESS, live=live)
 
 
 def trial_columns(row, name="best_t%d"):
