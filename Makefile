@@ -11,7 +11,8 @@
 #   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable, priced
 #                   first (tools/replicate.mk; README.md, "Replicating the study")
 #   make fuzz       fuzz targets (clang's libFuzzer, ASan + UBSan) and seed corpora in build-fuzz/;
-#                   make fuzz-run [FUZZ_RUNS=1000000] runs each (not part of make test)
+#                   make fuzz-run [FUZZ_RUNS=1000000] runs each, then tests/tools_sweep.py --full
+#                   (not part of make test)
 #   make golden-update [GOLDEN=NAME]   rewrite tests/golden/golden.sha256 after a change meant
 #                   to move results (tests/check_golden.sh)
 #   make install PREFIX=/usr/local
@@ -169,6 +170,13 @@ $(BUILD)/evolve-mpi.stamp: FORCE | $(BUILD)/obj
 
 FORCE:
 
+# the page writer's fuzz target without libFuzzer (tests/fuzz/run_inputs.c), with the default
+# compiler: make test runs its property on the seeds (tests/check_html.sh)
+$(BUILD)/page_check: tests/fuzz/fuzz_page.c tests/fuzz/run_inputs.c tests/fuzz/app_shim.h \
+  $(APP_PAGE) apps/trial_page.h $(BUILD)/trial_page.inc $(FULL_A) $(HEADERS)
+	$(CC) $(CPPFLAGS_ALL) -Iapps -I$(BUILD) $(CFLAGS_ALL) -o $@ tests/fuzz/fuzz_page.c \
+	  tests/fuzz/run_inputs.c $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
+
 $(BUILD)/%: tools/%.c $(FULL_A) $(HEADERS)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
 
@@ -200,7 +208,7 @@ FAULT_SHIM := $(BUILD)/fault_shim.so
 $(FAULT_SHIM): tests/faults/fault_shim.c | $(BUILD)/obj
 	$(CC) -std=c99 $(WARN) -O2 -fPIC -shared -o $@ $< -ldl
 
-test-only: all $(TEST_BIN) $(FAULT_SHIM)
+test-only: all $(TEST_BIN) $(FAULT_SHIM) $(BUILD)/page_check
 	+@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
 
 asan-only:
@@ -228,7 +236,7 @@ FUZZ_CXX ?= clang++
 FUZZ_DIR := build-fuzz
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_FLAGS := -g -O1 $(FUZZ_SAN) -fsanitize=fuzzer-no-link
-FUZZ_TARGETS := config genome urdf checkpoint journal score stats
+FUZZ_TARGETS := config genome urdf checkpoint journal score stats page
 # the library but its two OpenMP modules (evolution, the parallel post-evaluation)
 FUZZ_LIB := $(filter-out run/evolve posteval/postrun,$(patsubst lib/%,%,$(basename $(CORE_SRC) $(SIM_SRC))))
 FUZZ_OBJ := $(FUZZ_LIB:%=$(FUZZ_DIR)/obj/%.o)
@@ -249,12 +257,13 @@ $(FUZZ_DIR)/obj/%.o: lib/%.cpp $(HEADERS)
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(CPPFLAGS_ALL) -std=c++17 -Wall -Wextra $(FUZZ_FLAGS) -c $< -o $@
 
-# the app's reader (score) is fuzzed in the app's own source, included by the target; stats's
-# readers are the library's
+# the app's reader (score) and replay's page writer are fuzzed in the apps' own source, included
+# by the target; stats's readers are the library's
 $(FUZZ_DIR)/fuzz_score: apps/score.c tests/fuzz/app_shim.h
+$(FUZZ_DIR)/fuzz_page: $(APP_PAGE) apps/trial_page.h $(BUILD)/trial_page.inc tests/fuzz/app_shim.h
 
 $(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_OBJ) $(HEADERS)
-	$(FUZZ_CC) $(CPPFLAGS_ALL) -Iapps -std=c99 $(WARN) $(FUZZ_FLAGS) -c $< -o $@.o
+	$(FUZZ_CC) $(CPPFLAGS_ALL) -Iapps -I$(BUILD) -std=c99 $(WARN) $(FUZZ_FLAGS) -c $< -o $@.o
 	$(FUZZ_CXX) -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $@.o $(FUZZ_OBJ) $(LIBS_SIM) $(LIBS_CORE)
 
 # seeds: the shipped configs, genomes and URDF, a short run's checkpoint with its files, and
@@ -268,6 +277,7 @@ FUZZ_SEEDS_checkpoint := tests/fuzz/seeds/checkpoint/*
 FUZZ_SEEDS_journal := tests/fuzz/seeds/journal/*
 FUZZ_SEEDS_score := tests/fuzz/seeds/score/*
 FUZZ_SEEDS_stats := tests/fuzz/seeds/stats/*
+FUZZ_SEEDS_page := tests/fuzz/seeds/page/*
 $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 	@mkdir -p $(@D)
 	@for f in $(wildcard $(FUZZ_SEEDS_$*) tests/fuzz/regressions/$*/*); do \
@@ -287,7 +297,11 @@ fuzz-run: fuzz
 	       -artifact_prefix=$(FUZZ_DIR)/$$t- $(FUZZ_DIR)/corpus/$$t > $(FUZZ_DIR)/$$t.log 2>&1; then \
 	    grep -E '^(Done|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)' $(FUZZ_DIR)/$$t.log; \
 	  else bad=1; tail -40 $(FUZZ_DIR)/$$t.log; fi; \
-	done; exit $$bad
+	done; \
+	echo "== tools_sweep --full: every Python tool on malformed CSVs, every value in every column"; \
+	nice -n $(FUZZ_NICE) $(PYTHON) tests/tools_sweep.py $(FUZZ_DIR)/tools-sweep --full \
+	  > $(FUZZ_DIR)/tools-sweep.log 2>&1 || bad=1; tail -20 $(FUZZ_DIR)/tools-sweep.log; \
+	exit $$bad
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/selftalk $(DESTDIR)$(PREFIX)/lib/pkgconfig \

@@ -4,6 +4,7 @@
  * page's script (tools/trial_page.html) is its only reader. */
 #include "trial_page.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -90,19 +91,66 @@ static void sb_printf(sbuf *b, const char *fmt, ...) {
   b->len += (size_t)n;
 }
 
-/* a JSON string; <, > and & as \u escapes so no data can end the <script> element, non-ASCII
- * bytes as '?' so the text is ASCII and the page's checksum reads it as written */
-static void sb_json(sbuf *b, const char *s) {
-  sb_printf(b, "\"");
-  for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
-    if (*c == '"' || *c == '\\') sb_printf(b, "\\%c", *c);
-    else if (*c < 0x20 || *c == '<' || *c == '>' || *c == '&') sb_printf(b, "\\u%04x", *c);
-    else sb_printf(b, "%c", *c < 0x80 ? *c : '?');
-  }
-  sb_printf(b, "\"");
+static void sb_put(sbuf *b, const char *s, size_t n) {
+  sb_grow(b, n);
+  memcpy(b->s + b->len, s, n);
+  b->len += n;
+  b->s[b->len] = 0;
 }
 
+static void sb_append(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
+
+/* The one place where text from outside (link names, paths, the genotype's file name) enters
+ * the page, escaped for where it lands: a browser must never read it as markup or code.
+ *  - PAGE_HTML: element text or an attribute value (&, <, >, ", ' as entities);
+ *  - PAGE_JSON: a JSON string in the data's <script> element (<, > and & as \u escapes, so no
+ *    data can end the element; the page's script puts it in the page as text, never as markup);
+ *  - PAGE_COMMENT: inside a JavaScript comment in a <script> element: every byte but a few
+ *    plain ones %-escaped, so neither "* /" nor "</script" nor "<!--" can occur.
+ * Non-ASCII bytes become '?' (HTML, JSON) or %XX (comment), control bytes '?', \u escapes or %XX:
+ * the page is ASCII, and the checksum the page recomputes over the data reads it as written. */
+typedef enum pageContext { PAGE_HTML, PAGE_JSON, PAGE_COMMENT } pageContext;
+
+static void sb_escaped(sbuf *b, pageContext ctx, const char *s) {
+  if (ctx == PAGE_JSON) sb_printf(b, "\"");
+  for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
+    const int plain = *c >= 0x20 && *c < 0x7f;
+    if (ctx == PAGE_COMMENT) {
+      if (isalnum(*c) || (*c && strchr(" ._/+,:=@~-", *c))) sb_printf(b, "%c", *c);
+      else sb_printf(b, "%%%02X", *c);
+    } else if (ctx == PAGE_HTML) {
+      if (*c == '&') sb_printf(b, "&amp;");
+      else if (*c == '<') sb_printf(b, "&lt;");
+      else if (*c == '>') sb_printf(b, "&gt;");
+      else if (*c == '"') sb_printf(b, "&quot;");
+      else if (*c == '\'') sb_printf(b, "&#39;");
+      else sb_printf(b, "%c", plain ? *c : '?');
+    } else {
+      if (*c == '"' || *c == '\\') sb_printf(b, "\\%c", *c);
+      else if (*c < 0x20 || *c == '<' || *c == '>' || *c == '&') sb_printf(b, "\\u%04x", *c);
+      else sb_printf(b, "%c", *c < 0x80 ? *c : '?');
+    }
+  }
+  if (ctx == PAGE_JSON) sb_printf(b, "\"");
+}
+
+static void sb_json(sbuf *b, const char *s) { sb_escaped(b, PAGE_JSON, s); }
+
 /* ---- reading three.js ------------------------------------------------------------------ */
+
+/* where text inlined in a <script> element would end it early ("</script", in any case, as the
+ * HTML parser reads it) or switch the parser into its escaped states ("<!--"); NULL: nowhere */
+static const char *script_breaker(const char *text) {
+  for (const char *c = text; *c; c++) {
+    if (*c != '<') continue;
+    if (!strncmp(c, "<!--", 4)) return c;
+    if (c[1] != '/') continue;
+    int k = 0;
+    while (k < 6 && c[2 + k] && tolower((unsigned char)c[2 + k]) == "script"[k]) k++;
+    if (k == 6) return c;
+  }
+  return NULL;
+}
 
 static char *read_lib(trialPage *pg, const char *rel) {
   char path[1100], err[1024];
@@ -113,10 +161,8 @@ static char *read_lib(trialPage *pg, const char *rel) {
     app_die(pg->prog, "--html: %s (three.js: Debian's libjs-three, `apt-get install libjs-three` "
             "or `make deps`; or give --three DIR or %s=DIR, a directory holding three.min.js and "
             "examples/js/controls/OrbitControls.js)", err, TRIAL_PAGE_THREE_ENV);
-  /* inlined in a <script> element, which such text would end early */
-  for (const char *c = text; *c; c++)
-    if (*c == '<' && (!strncmp(c, "<!--", 4) || (c[1] == '/' && !strncmp(c + 2, "script", 6))))
-      app_die(pg->prog, "--html: %s holds '%.8s' (cannot be inlined in a page)", path, c);
+  const char *bad = script_breaker(text);
+  if (bad) app_die(pg->prog, "--html: %s holds '%.8s' (cannot be inlined in a page)", path, bad);
   return text;
 }
 
@@ -336,38 +382,32 @@ static const char *const MIT =
     "OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION WITH THE SOFTWARE OR "
     "THE USE OR OTHER DEALINGS IN THE SOFTWARE.";
 
-static void libs(FILE *f, const trialPage *pg) {
+/* the two three.js files, each in its <script> element headed by a comment with the licence
+ * and where it was read from (the directory as PAGE_COMMENT: a name holding "* /" or "</script"
+ * stays inside the comment) */
+static void libs(sbuf *b, const trialPage *pg) {
   /* Debian's three.min.js carries no notice of its own: the upstream licence goes with it */
-  fprintf(f, "<script>\n/* three.js r%s, read from %s/three.min.js (Debian's libjs-three) and "
-          "inlined unchanged.\n * Copyright (c) 2010-2019 three.js authors. The MIT License:\n"
-          " * %s */\n%s\n</script>\n", pg->revision, pg->three_dir, MIT, pg->three);
-  fprintf(f, "<script>\n/* OrbitControls of three.js r%s (%s/examples/js/controls/"
-          "OrbitControls.js), inlined unchanged; the licence above. */\n%s\n</script>\n",
-          pg->revision, pg->three_dir, pg->orbit);
+  sb_printf(b, "<script>\n/* three.js r%s, read from ", pg->revision);
+  sb_escaped(b, PAGE_COMMENT, pg->three_dir);
+  sb_printf(b, "/three.min.js (Debian's libjs-three) and inlined unchanged.\n * Copyright (c) "
+            "2010-2019 three.js authors. The MIT License:\n * %s */\n", MIT);
+  sb_append(b, pg->three);
+  sb_printf(b, "\n</script>\n<script>\n/* OrbitControls of three.js r%s (", pg->revision);
+  sb_escaped(b, PAGE_COMMENT, pg->three_dir);
+  sb_printf(b, "/examples/js/controls/OrbitControls.js), inlined unchanged; the licence above. "
+            "*/\n");
+  sb_append(b, pg->orbit);
+  sb_printf(b, "\n</script>\n");
 }
 
-static void html_text(FILE *f, const char *s) {
-  for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
-    if (*c == '&') fputs("&amp;", f);
-    else if (*c == '<') fputs("&lt;", f);
-    else if (*c == '>') fputs("&gt;", f);
-    else if (*c == '"') fputs("&quot;", f);
-    else fputc(*c >= 0x20 && *c < 0x80 ? *c : '?', f);
-  }
-}
-
-void trial_page_finish(trialPage *pg, const trialPageSummary *sum) {
-  if (pg->steps == 0) app_die(pg->prog, "--html: the trial ran no step");
-  sbuf data = {NULL, 0, 0, pg->prog};
-  data_json(&data, pg, sum);
-  char err[1024];
-  stAtomicFile af;
-  if (st_atomic_open(&af, pg->path, err, sizeof err)) app_die(pg->prog, "--html: %s", err);
+/* the page: the template with its three marks replaced by the title, three.js and the data */
+static void page_text(sbuf *out, const trialPage *pg, const trialPageSummary *sum,
+                      const sbuf *data) {
   const char *t = (const char *)TEMPLATE;
   int seen[3] = {0, 0, 0};
   static const char *const NAMES[3] = {"TITLE", "LIBS", "DATA"};
   for (const char *m; (m = strstr(t, "@@"));) {
-    fwrite(t, 1, (size_t)(m - t), af.f);
+    sb_put(out, t, (size_t)(m - t));
     const char *end = strstr(m + 2, "@@");
     int k = 0;
     while (k < 3 && !(end && (size_t)(end - m - 2) == strlen(NAMES[k]) &&
@@ -376,25 +416,37 @@ void trial_page_finish(trialPage *pg, const trialPageSummary *sum) {
     if (k == 3) app_die(pg->prog, "--html: the page template has '%.20s' (expected @@TITLE@@, "
                         "@@LIBS@@, @@DATA@@)", m);
     seen[k]++;
-    if (k == 0) html_text(af.f, sum->title);
-    else if (k == 1) libs(af.f, pg);
+    if (k == 0) sb_escaped(out, PAGE_HTML, sum->title);
+    else if (k == 1) libs(out, pg);
     else {
-      fprintf(af.f, "<script type=\"application/json\" id=\"trial-data\" data-fnv=\"%08x\">",
-              (unsigned)fnv1a(data.s, data.len));
-      fwrite(data.s, 1, data.len, af.f);
-      fputs("</script>", af.f);
+      sb_printf(out, "<script type=\"application/json\" id=\"trial-data\" data-fnv=\"%08x\">",
+                (unsigned)fnv1a(data->s, data->len));
+      sb_put(out, data->s, data->len);
+      sb_printf(out, "</script>");
     }
     t = end + 2;
   }
-  fputs(t, af.f);
+  sb_append(out, t);
   if (seen[0] != 1 || seen[1] != 1 || seen[2] != 1)
     app_die(pg->prog, "--html: the page template has @@TITLE@@ %d, @@LIBS@@ %d, @@DATA@@ %d "
             "times (expected once each)", seen[0], seen[1], seen[2]);
+}
+
+void trial_page_finish(trialPage *pg, const trialPageSummary *sum) {
+  if (pg->steps == 0) app_die(pg->prog, "--html: the trial ran no step");
+  sbuf data = {NULL, 0, 0, pg->prog};
+  data_json(&data, pg, sum);
+  sbuf page = {NULL, 0, 0, pg->prog};
+  page_text(&page, pg, sum, &data);
+  char err[1024];
+  stAtomicFile af;
+  if (st_atomic_open(&af, pg->path, err, sizeof err)) app_die(pg->prog, "--html: %s", err);
+  fwrite(page.s, 1, page.len, af.f);
   if (ferror(af.f)) {
     st_atomic_abort(&af);
     app_die(pg->prog, "--html: %s: write error", pg->path);
   }
-  long size = ftell(af.f);
+  const long size = (long)page.len;
   if (st_atomic_commit(&af, err, sizeof err)) app_die(pg->prog, "--html: %s", err);
   if (pg->clamped)
     fprintf(stderr, "replay: --html: %ld non-finite or huge values clamped (a diverged "
@@ -402,6 +454,7 @@ void trial_page_finish(trialPage *pg, const trialPageSummary *sum) {
   fprintf(stderr, "replay: %s: a page of %ld steps, %d shapes, %ld bytes (data %zu)\n", pg->path,
           pg->steps, pg->n, size, data.len);
   free(data.s);
+  free(page.s);
   free(pg->three);
   free(pg->orbit);
   free(pg->buf);

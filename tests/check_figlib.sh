@@ -1,6 +1,6 @@
 # Helpers of the checks that draw with tools/*.py (check_figures.sh, check_pictures.sh), sourced
 # after tests/check_lib.sh: draw (a PNG and an SVG, both checked by tests/valid_image.py), has
-# (printed lines), refuses (a non-zero exit, the message, no output written).
+# (printed lines), refuses (exit 2, the message, no output written).
 PY=${PYTHON:-/usr/bin/python3}
 VALID=tests/valid_image.py
 
@@ -27,12 +27,12 @@ has() {
   for l in "$@"; do grep -qxF -- "$l" "$tmp/$name.out" || { ko "$name: printed values" "no '$l' in: $(cat "$tmp/$name.out")"; return; }; done
   ok "$name: printed values"
 }
-# refuses NAME NEEDLE SCRIPT ARGS...: exit non-zero, NEEDLE on stderr, no output file
+# refuses NAME NEEDLE SCRIPT ARGS...: exit 2, NEEDLE on stderr, no output file
 refuses() {
   local name=$1 needle=$2 script=$3; shift 3
   rm -f "$tmp/bad.png" "$tmp/bad.svg"
   "$PY" "tools/$script" "$@" -o "$tmp/bad.png" -o "$tmp/bad.svg" > /dev/null 2> "$tmp/err"; local rc=$?
-  if [ "$rc" != 0 ] && grep -qF -- "$needle" "$tmp/err" && [ ! -e "$tmp/bad.png" ] && [ ! -e "$tmp/bad.svg" ]; then
+  if [ "$rc" = 2 ] && grep -qF -- "$needle" "$tmp/err" && [ ! -e "$tmp/bad.png" ] && [ ! -e "$tmp/bad.svg" ]; then
     ok "$name"
   else
     ko "$name" "rc=$rc $(cat "$tmp/err")"

@@ -166,7 +166,7 @@ refuses "fig3_12: a NUL byte" "$tmp/w2.csv:3: NUL byte" fig_words.py "$tmp/w2.cs
 printf 'step,caretaker_word,selftalk_label\n0,-1,7\n' > "$tmp/w3.csv"
 refuses "fig3_12: a word out of range" "$tmp/w3.csv:2: selftalk_label 7 (expected -1 for none or 0-3" fig_words.py "$tmp/w3.csv"
 : > "$tmp/w4.csv"
-refuses "fig3_12: an empty file" "$tmp/w4.csv: empty (expected an ./apps/replay trace" fig_words.py "$tmp/w4.csv"
+refuses "fig3_12: an empty file" "$tmp/w4.csv:1: empty (expected an ./apps/replay trace" fig_words.py "$tmp/w4.csv"
 
 # tools/best_run.py (Fig. 3.12's individual): the most successes; a tie goes to the lower run
 cat > "$tmp/b.csv" <<'CSV'

@@ -8,7 +8,8 @@
 # them, the ball lifted by the grasp), its script reports the steps, words and labels of the
 # trace, the browser's network log has no request of the page (and has one of a control page
 # that loads an image), a damaged or cut page shows an error text, a browser without WebGL
-# still shows the trace. Without a browser the Chromium part is skipped with a message.
+# still shows the trace. Pages of hostile names (markup and code in a URDF link, the genotype's
+# file name, the three.js directory) stay inert: the names shown as text, none run. Without a browser the Chromium part is skipped with a message.
 set -uo pipefail
 CHECK=check_html
 source "$(dirname "$0")/check_lib.sh"
@@ -64,6 +65,48 @@ SELFTALK_THREE_DIR=$tmp/none bad_opt "SELFTALK_THREE_DIR is read" "$tmp/none/thr
 bad_opt "--three without --html" "--three DIR is where --html FILE finds three.js: give --html" --three "$THREE"
 bad_opt "--html: an unwritable file" "--html: $tmp/none/x.html.tmp." --html "$tmp/none/x.html"
 
+# ---- hostile names (issue 48) ---------------------------------------------------------------
+# A URDF link listed in robot.touch_links, the genotype's file name and the three.js directory
+# hold markup and code, each of which sets data-pwned on the page when run. The writer escapes
+# each where it lands (apps/trial_page.c, sb_escaped) and the page's script builds its elements
+# from text nodes: the pages work, show the names as text and run none of them.
+# First the writer's property on its fuzz seeds and on a page with the real three.js
+# (build/page_check: tests/fuzz/fuzz_page.c without libFuzzer)
+{ printf 't\0l\0l_hand\0%s\0o\0' "$THREE"; cat "$THREE/three.min.js"; printf '\0'
+  cat "$THREE/examples/js/controls/OrbitControls.js"; } > "$tmp/page-seed"
+seeds=(tests/fuzz/seeds/page/* "$tmp/page-seed")
+[ -d tests/fuzz/regressions/page ] && seeds+=(tests/fuzz/regressions/page/*)
+"./${BUILD:-build}/page_check" "${seeds[@]}" > "$tmp/pc" 2>&1 &&
+  ok "the page writer keeps the page's elements and comments whatever the names ($(cat "$tmp/pc"), page_check)" ||
+  ko "page writer (build/page_check ${seeds[*]})" "$(cat "$tmp/pc")"
+pwn() { echo "<img src onerror=document.documentElement.dataset.pwned=$1>"; }
+cat > "$tmp/hostile.py" <<'PY'
+import html, re, sys
+tmp, ini, name = sys.argv[1:4]
+urdf = re.search(r"^urdf = (.*)$", open(ini).read(), re.M).group(1)
+open(f"{tmp}/hostile.urdf", "w").write(open(urdf).read().replace('"l_ring_3"', '"' + html.escape(name) + '"'))
+text = open(ini).read().replace(f"urdf = {urdf}", f"urdf = {tmp}/hostile.urdf")
+text = re.sub(r"^(touch_links = .*)l_ring_3", lambda m: m.group(1) + name, text, flags=re.M)
+open(f"{tmp}/hostile.ini", "w").write(text)
+PY
+"$PY" "$tmp/hostile.py" "$tmp" "$RUN/config.ini" "$(pwn 3)"
+HGENOME="$tmp/$(pwn 4).genome"
+cp "$RUN/population.genome" "$HGENOME"
+THREE_A="$tmp/three-a/x*/document.documentElement.dataset.pwned=1;/*" # ends the comment
+THREE_B="$tmp/three-b/x</script>$(pwn 2)"                              # ends the element
+for d in "$THREE_A" "$THREE_B"; do
+  mkdir -p "$d/examples/js/controls" && ln -s "$THREE/three.min.js" "$d/three.min.js" &&
+    ln -s "$THREE/examples/js/controls/OrbitControls.js" "$d/examples/js/controls/OrbitControls.js"
+done
+hostile() { # NAME THREE_DIR GENOME CONFIG
+  "$APPDIR/replay" "$3" "$4" --stage main --trial 8 --html "$tmp/$1.html" --three "$2" \
+    > /dev/null 2> "$tmp/$1.err" || { ko "$1: replay --html" "$(cat "$tmp/$1.err")"; return; }
+  "$PY" $HP static "$tmp/$1.html" "$2" > "$tmp/$1.static" 2>&1 &&
+    ok "$1: every name escaped where it lands (static)" || ko "$1: static" "$(cat "$tmp/$1.static")"
+}
+hostile hostile-a "$THREE_A" "$HGENOME" "$tmp/hostile.ini"
+hostile hostile-b "$THREE_B" "$RUN/population.genome" "$RUN/config.ini"
+
 # ---- in a browser ---------------------------------------------------------------------------
 BROWSER=
 for b in chromium chromium-browser; do command -v "$b" > /dev/null && { BROWSER=$b; break; }; done
@@ -117,6 +160,20 @@ for n in integration stct; do
 done
 grep -q 'data-labels="[^"]*[0-3]' "$tmp/stct.dom" && grep -q '>Linguistic outputs<' "$tmp/stct.dom" &&
   ok "stct: self-talk labels and linguistic outputs shown" || ko "stct: labels" "$(grep -o 'data-labels="[^"]\{0,60\}' "$tmp/stct.dom")"
+
+# the hostile pages in the browser: they work, nothing of the names ran, no element was added
+for n in hostile-a hostile-b; do
+  browse "$n" "file://$tmp/$n.html#step=40"
+  if [ "$(status $n)" = 'data-status="ok"' ] && ! grep -q 'data-pwned' "$tmp/$n.dom" && ! grep -qi '<img' "$tmp/$n.dom"; then
+    ok "$n: inert in the browser (no data-pwned, no <img>, the page drawn)"
+  else
+    ko "$n: in the browser" "$(status $n) $(grep -o 'data-pwned="[^"]*"' "$tmp/$n.dom") $(grep -oi '<img[^>]*>' "$tmp/$n.dom" | head -3)"
+  fi
+done
+grep -qE '<span id="t3" class="(on)?">&lt;img src onerror=document.documentElement.dataset.pwned=3&gt;</span>' "$tmp/hostile-a.dom" &&
+  grep -qF "<h1 id=\"title\">$tmp/&lt;img src onerror=document.documentElement.dataset.pwned=4&gt;.genome genotype 0" "$tmp/hostile-a.dom" &&
+  ok "hostile-a: the link's and the genotype file's names shown as text" ||
+  ko "hostile-a: names as text" "$(grep -o '<span id="t3"[^<]*' "$tmp/hostile-a.dom") $(grep -o '<h1 id="title">[^<]*' "$tmp/hostile-a.dom")"
 
 # damaged pages: a digit of the data changed, the file cut inside the data
 "$PY" - "$tmp/grasp.html" "$tmp" <<'PY'

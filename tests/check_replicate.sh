@@ -169,7 +169,7 @@ else ko "killed during the integrated runs" "report exists or no integrated chec
 nck=$(find "$tmp/b" -name checkpoint | wc -l)
 if $REP snapshot OUT="$tmp/b" SNAPSHOT="$tmp/bsnap" > "$tmp/bs.out" 2>&1 && mv "$tmp/b" "$tmp/b.orig" &&
    $REP restore OUT="$tmp/b" SNAPSHOT="$tmp/bsnap" >> "$tmp/bs.out" 2>&1 &&
-   diff -r -x '*.tmp' "$tmp/b.orig" "$tmp/b" > /dev/null && [ "$nck" -ge 5 ] &&
+   diff -r -x '*.tmp' -x '*.tmp.[0-9]*' "$tmp/b.orig" "$tmp/b" > /dev/null && [ "$nck" -ge 5 ] &&
    grep -q "checkpoints" "$tmp/bs.out" && [ -z "$(find "$tmp/bsnap" -name '*.tmp')" ]; then
   ok "snapshot and restore: the killed replication copied whole ($nck checkpoints), no temporary file"
 else ko "snapshot and restore" "$(cat "$tmp/bs.out")"; fi
@@ -243,7 +243,7 @@ else ko "report without chain runs" "$(cat "$tmp/e")"; fi
 # the chain stage's figure (tools/fig_chain.py) from the chain runs, only with PROTOCOL=chain
 out=$(dry OUT="$tmp/f" PROTOCOL=chain "$tmp/f/figures/.done")
 out0=$(dry OUT="$tmp/f" PROTOCOL=thesis "$tmp/f/figures/.done")
-if grep -q "tools/fig_chain.py $tmp/f/chain-s1 $tmp/f/chain-s2 -o $tmp/f/figures/fig_chain.png" <<< "$out" &&
+if grep -qF "tools/fig_chain.py $tmp/f/chain-s1 $tmp/f/chain-s2 -o '$tmp/f/figures/fig_chain.png'" <<< "$out" &&
    grep -q "tools/fig_int_fitness.py" <<< "$out0" && ! grep -q fig_chain <<< "$out0"; then
   ok "PROTOCOL=chain: the chain stage's figure from the chain runs"
 else ko "PROTOCOL=chain figure"; fi

@@ -207,6 +207,11 @@ head -2 "$FX/summary.csv" > "$tmp/s6"; printf 'robustness,"ST",1,0,5,40,0,0\n' >
 fails "summary: quoted field" "$tmp/s6:3: a quoted field (expected plain comma-separated values)" "$ST" table "$tmp/s6"
 head -2 "$FX/summary.csv" > "$tmp/s7"; printf 'robustness,ST,1,0,0,40,0,0\0\n' >> "$tmp/s7"
 fails "summary: NUL byte" "$tmp/s7:3: NUL byte" "$ST" table "$tmp/s7"
+# 33 conditions (ST_POST_MAX_NAMES 32): the file and the line of the first one too many
+{ head -1 "$FX/summary.csv"; for c in $(seq 1 33); do echo "robustness,C$c,0,0,5,40,0,0"; done; } > "$tmp/s8"
+fails "summary: 33 conditions, the 33rd's line named" "$tmp/s8:34: condition 'C33': more than 32 conditions in the test (expected at most 32)" "$ST" table "$tmp/s8"
+sed 's/^robustness,/generalisation,/' "$tmp/s8" > "$tmp/s9"
+fails "summary: 33 conditions of the generalisation test" "$tmp/s9:34: condition 'C33': more than 32 conditions in the test (expected at most 32)" "$ST" table "$tmp/s9"
 head -2 "$FX/trials.csv" > "$tmp/t1"; echo 'generalisation,ST0,1,0,0,-1,0,0,0,talk,0,-1,0' >> "$tmp/t1"
 fails "trials: unknown words" "$tmp/t1:3: words 'talk' (expected none, caretaker or selftalk)" "$ST" selftalk "$tmp/t1"
 head -2 "$FX/trials.csv" > "$tmp/t2"; echo 'generalisation,ST0,1,0,0,-1,0,0,0,none,1,-1,0' >> "$tmp/t2"

@@ -56,7 +56,7 @@ python3 tools/plot_fitness.py "$t/a/fitness.csv" --from 100 >/dev/null 2>"$t/err
 [ $rc != 0 ] && grep -q "no generation in the requested range" "$t/err" && ok "plot_fitness: empty range refused" || ko "plot_fitness empty range rc=$rc"
 printf 'gen,x\n1,2\n' >"$t/bad.csv"
 python3 tools/plot_fitness.py "$t/bad.csv" >/dev/null 2>"$t/err"; rc=$?
-[ $rc != 0 ] && grep -q "bad.csv: expected a fitness.csv" "$t/err" && ok "plot_fitness: wrong columns refused, naming the file" || ko "plot_fitness bad csv rc=$rc"
+[ $rc = 2 ] && grep -q "bad.csv:1: header without generation,best (expected the fitness.csv of ./apps/evolve" "$t/err" && ok "plot_fitness: wrong columns refused, naming the file" || ko "plot_fitness bad csv rc=$rc $(cat "$t/err")"
 # a config.ini beside fitness.csv sets the completion threshold: with 6, run c's main-prim
 # (at most 5 genotypes solving everything) is not complete, its simple-prim still at 1
 cp -r "$t/c" "$t/c6" && printf '[ga]\n# comment\nsuccess_genotypes = 6\n' > "$t/c6/config.ini"
@@ -193,7 +193,7 @@ else
   ko "screen_report varied: $out5 $out2"
 fi
 python3 tools/screen_report.py "$t/nope" >/dev/null 2>"$t/err"; rc=$?
-[ $rc = 1 ] && grep -q "screen_report: $t/nope/fitness.csv" "$t/err" && ok "screen_report: a missing screen named" || ko "screen_report missing rc=$rc $(cat "$t/err")"
+[ $rc = 2 ] && grep -q "screen_report: $t/nope/fitness.csv" "$t/err" && ok "screen_report: a missing screen named" || ko "screen_report missing rc=$rc $(cat "$t/err")"
 # tools/runconfig.py, the tools' one reader of a run's config.ini: a key in its own section
 # (not another section's key of the same name), the default without the file or the key, and a
 # value it cannot convert named with FILE:LINE
@@ -273,6 +273,55 @@ print("%d picks" % seen, *bad)
 sys.exit(1 if bad or seen < 10 else 0)
 PY
 ); then ok "tools: every column name picked is the library's ($out)"; else ko "tools' column names" "$out"; fi
+
+# ---- malformed input (issue 48): every Python tool says FILE:LINE: and what it expected, exit 2,
+# never a traceback. First the cases the issue names, then the sweep over every tool.
+PYT=${PYTHON:-/usr/bin/python3}
+refused() { # NAME NEEDLE CMD...: exit 2, NEEDLE on stderr, no traceback
+  local name=$1 needle=$2; shift 2
+  "$@" > "$t/o" 2> "$t/e"; local rc=$?
+  if [ $rc = 2 ] && grep -qF -- "$needle" "$t/e" && ! grep -q Traceback "$t/e"; then ok "$name"
+  else ko "$name" "rc=$rc $(head -c 600 "$t/e")"; fi
+}
+mkdir -p "$t/nan" "$t/dup"
+sed '4s/^2,30,/2,nan,/' "$t/a/fitness.csv" > "$t/nan/fitness.csv"
+sed '3p' "$t/a/fitness.csv" > "$t/dup/fitness.csv"   # generation 1 twice
+for tool in plot_fitness runs_summary run_report; do
+  arg() { [ $tool = plot_fitness ] && echo "$1/fitness.csv" || echo "$1"; }
+  refused "$tool: a nan fitness refused" "$t/nan/fitness.csv:4: best 'nan' (expected a finite number)" \
+    "$PYT" tools/$tool.py "$(arg "$t/nan")" $([ $tool = run_report ] && echo --no-plot)
+  refused "$tool: a generation given twice refused" "$t/dup/fitness.csv:4: generation 1 again (first at line 3" \
+    "$PYT" tools/$tool.py "$(arg "$t/dup")" $([ $tool = run_report ] && echo --no-plot)
+done
+# replicate.mk cost (tools/replicate_cost.py) on a bad cache of measured costs: a row of this
+# host and build without its count (was KeyError: 'n'), a nan cost (was "nan core-hours"), and
+# --assume nan; a stand-in for build/eval_cost that prints its plan at once
+printf '#!/bin/sh\necho individual,cpu_s\necho "# plan: population=10 generations=10 replace_generations=0 trials=4 individuals=2"\n' > "$t/eval_cost"
+chmod +x "$t/eval_cost"
+build=$(sha256sum "$t/eval_cost" | cut -c1-12) host=$(hostname)
+mkdir -p "$t/rep/cost"
+cost() { "$PYT" tools/replicate_cost.py --preset tiny --protocol thesis --runs 1 --out "$t/rep" --eval-cost "$t/eval_cost" "$@"; }
+key="configs/prims.cfg --population data/evolved/prims_s2/population.genome --count 1"
+printf 'host,build,kind,args,mean_cpu_s,min_cpu_s,max_cpu_s,measured\n%s,%s,prims,%s,0.5,0.4,0.6,now\n' "$host" "$build" "$key" > "$t/rep/cost/costs.csv"
+refused "replicate cost: a cache without its count column refused" \
+  "$t/rep/cost/costs.csv:1: header without n (expected the measured costs replicate cost keeps" cost
+printf 'host,build,kind,args,n,mean_cpu_s,min_cpu_s,max_cpu_s,measured\n%s,%s,prims,%s,1,nan,0.4,0.6,now\n' "$host" "$build" "$key" > "$t/rep/cost/costs.csv"
+refused "replicate cost: a nan cost in the cache refused" "$t/rep/cost/costs.csv:2: mean_cpu_s 'nan' (expected a finite number > 0)" cost
+rm "$t/rep/cost/costs.csv"
+refused "replicate cost: --assume nan refused" "--assume *=nan: expected KIND=SECONDS, a finite number > 0" cost --assume '*=nan'
+if cost --assume '*=0.5' > "$t/o" 2> "$t/e" && grep -qE '^total [0-9.]+ core-hours' "$t/o" && ! grep -qi nan "$t/o"; then
+  ok "replicate cost: with costs assumed, a total in core-hours ($(tail -1 "$t/o"))"
+else ko "replicate cost, assumed" "$(cat "$t/e"; tail -3 "$t/o")"; fi
+# tools/mpi_model.py reads a replication's own costs.csv: the model kind by kind
+if "$PYT" tools/mpi_model.py data/evolved/study/cost/costs.csv --slots 1,2 --samples 3 > "$t/o" 2> "$t/e" &&
+   [ "$(grep -c '^# data/evolved/study/cost/costs.csv: .* s an evaluation, every individual at it$' "$t/o")" = \
+     "$(($(grep -vc '^host,' data/evolved/study/cost/costs.csv)))" ]; then
+  ok "mpi_model: a replication's costs.csv, kind by kind"
+else ko "mpi_model on costs.csv" "$(cat "$t/e"; head -3 "$t/o")"; fi
+# the sweep: every tool, ~1500 malformed inputs (tests/tools_sweep.py)
+if "$PYT" tests/tools_sweep.py "$t/sweep" > "$t/sweep.out" 2>&1; then
+  ok "malformed CSVs: $(tail -1 "$t/sweep.out" | sed 's/^tools_sweep: //'): exit 2 with FILE:LINE, no traceback"
+else ko "malformed CSVs" "$(head -c 3000 "$t/sweep.out")"; fi
 
 echo "check_tools: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -119,7 +119,7 @@ refuses "an unknown event" "$tmp/t5.csv:3: event 'end_maybe' (expected empty, en
 head -10 "$K/trace.csv" > "$tmp/t6.csv"
 refuses "a cut trace" "$K/shapes.csv: shapes of step 9, but $tmp/t6.csv has steps 0..8 (expected the files of one replay)" "$K/shapes.csv" "$tmp/t6.csv"
 : > "$tmp/t7.csv"
-refuses "an empty trace" "$tmp/t7.csv: empty (expected an ./apps/replay trace (--out)" "$K/shapes.csv" "$tmp/t7.csv"
+refuses "an empty trace" "$tmp/t7.csv:1: empty (expected an ./apps/replay trace (--out)" "$K/shapes.csv" "$tmp/t7.csv"
 refuses "a missing trace" "$tmp/none.csv: No such file or directory" "$K/shapes.csv" "$tmp/none.csv"
 cut -d, -f1-40 "$K/trace.csv" > "$tmp/t8.csv"
 refuses "a trace without the words" "$tmp/t8.csv:1: header without touching,lifted,caretaker_word,selftalk_label" "$K/shapes.csv" "$tmp/t8.csv"
@@ -134,7 +134,7 @@ refuses "a summary of another replay" "$tmp/r1.txt:1: steps=30/30 but the trace 
 sed '3s/,robot,/,robt,/' "$K/shapes.csv" > "$tmp/s1.csv"
 refuses "a damaged shapes file" "$tmp/s1.csv:3: kind 'robt' (expected robot, ball, table, target)" "$tmp/s1.csv" "$K/trace.csv"
 "$PY" tools/trial_video.py "$K/shapes.csv" "$K/trace.csv" -o "$tmp/bad.avi" > /dev/null 2> "$tmp/err"
-[ $? = 1 ] && grep -qF "$tmp/bad.avi: unknown video format (expected a name ending in .gif or .mp4)" "$tmp/err" &&
+[ $? = 2 ] && grep -qF "$tmp/bad.avi: unknown video format (expected a name ending in .gif or .mp4)" "$tmp/err" &&
   [ ! -e "$tmp/bad.avi" ] && ok "an unknown format" || ko "an unknown format" "$(cat "$tmp/err")"
 refuses "a bad --size" "--size '10x10': expected WxH in pixels, 64..4096 each" "$K/shapes.csv" "$K/trace.csv" --size 10x10
 refuses "--stride 0" "--stride 0: out of range" "$K/shapes.csv" "$K/trace.csv" --stride 0

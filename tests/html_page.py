@@ -2,6 +2,8 @@
 """Checks of a trial page (./apps/replay --html) for tests/check_html.sh; standard library only.
 
     html_page.py static PAGE THREE_DIR       self-contained: nothing it loads, three.js inlined unchanged
+                                             under a comment that ends where it should; the page's
+                                             script parses no markup
     html_page.py report DOM TRACE [STEP]     what the page's script read (--dump-dom) equals the trace,
                                              the ball drawn at the trace's object at the step shown
     html_page.py pixels PNG DOM MIN_BALL     the screenshot shows the robot and the ball where the camera puts them
@@ -26,6 +28,10 @@ LIB_URLS = {"http://www.w3.org/1999/xhtml", "https://graphics.stanford.edu/paper
 # attributes that make a browser load something
 LOADING = {"src", "href", "srcset", "action", "formaction", "data", "poster", "background",
            "manifest", "codebase", "cite", "longdesc", "ping", "xlink:href"}
+# the DOM's markup parsers and code from strings: the page's own script uses none (it builds
+# elements and text nodes), so no name in the data can become an element or a handler
+MARKUP = re.compile(r"\.innerHTML|\.outerHTML|insertAdjacentHTML|document\.write|DOMParser|"
+                    r"createContextualFragment|srcdoc|\beval\(|new Function|setTimeout\(\s*['\"]")
 # text that loads something from a script or a style sheet
 LOADING_TEXT = re.compile(r"https?:|\bsrc\s*=|\bhref\s*=|url\(|@import|fetch\(|XMLHttpRequest|"
                           r"import\(|\bimport\s|new Worker|sendBeacon|EventSource|WebSocket|"
@@ -79,6 +85,10 @@ def static(page, three_dir):
             if lib in body:  # inlined unchanged; its http(s) text is the known names only
                 found[i] = True
                 rest = rest.replace(lib, "")
+                # the comment heading it (its licence and where it was read from) ends just
+                # before it: a directory named "x*/code;/*" must not end it early
+                if not re.fullmatch(r"\s*/\*(?:(?!\*/)[^<])*\*/\s*", rest, re.S):
+                    die(f"{LIBS[i]}: its heading comment ends early or holds '<': {rest[:300]!r}")
                 extra = set(re.findall(r"https?://[^\s\"'`)\\]+", lib)) - LIB_URLS
                 if extra:
                     die(f"{LIBS[i]} holds other addresses than the known names: {sorted(extra)}")
@@ -88,6 +98,11 @@ def static(page, three_dir):
                 "style and data must name no address)")
         if tag == "script" and "src" in attrs:
             die("<script src>")
+        if tag == "script" and attrs.get("type") != "application/json" and not any(lib in body for lib in libs):
+            m = MARKUP.search(body)
+            if m:
+                die(f"the page's script parses markup or code from a string: "
+                    f"'{body[max(0, m.start() - 60):m.end() + 40]}'")
     if not all(found):
         die(f"three.js not inlined unchanged: {[f for f, ok in zip(LIBS, found) if not ok]}")
     outside = re.sub(r"<(script|style)\b.*?</\1>", "", text, flags=re.S | re.I)

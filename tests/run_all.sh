@@ -50,6 +50,7 @@ run_part "pictures of the robot: replay --shapes, tools/draw_trial.py" bash test
 run_part "trial pages: replay --html in headless Chromium" bash tests/check_html.sh
 run_part "trial videos: tools/trial_video.sh, GIF and MP4 frames, bad input" bash tests/check_video.sh
 run_part "make replicate: every step, killed and resumed (PRESET=tiny)" bash tests/check_replicate.sh
+run_part "replicate.mk's directories: OUT make cannot quote, snapshot and restore" bash tests/check_snapshot.sh
 run_part "golden results (tests/golden/golden.sha256)" bash tests/check_golden.sh
 if [ "$BUILD" = build ]; then
   run_part "install + pkg-config" bash tests/check_install.sh

@@ -29,7 +29,8 @@ def main():
     ap.add_argument("summary")
     ap.add_argument("--condition", help="the condition's rows only")
     a = ap.parse_args()
-    rows = figlib.read_csv(a.summary, COLUMNS, "a post-evaluation's summary.csv")
+    rows = figlib.read_csv(a.summary, COLUMNS, "a post-evaluation's summary.csv",
+                           schema=csvschema.SUMMARY, key=("condition", "run", "individual"))
     if a.condition:
         rows = [r for r in rows if r["condition"] == a.condition]
     conds = sorted({r["condition"] for r in rows})

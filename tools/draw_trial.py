@@ -44,6 +44,7 @@ COLOUR = {"robot": (0.55, 0.63, 0.75, 1.0), "ball": (0.95, 0.55, 0.15, 1.0),
           "base": (0.80, 0.42, 0.08, 1.0), "table": (0.80, 0.70, 0.52, 0.55),
           "target": (0.20, 0.70, 0.30, 0.13)}
 ORTHO_TOL = 1e-6  # the shapes file's 9 significant digits are far better
+FAR = 1e3  # m: the arm spans 1 m; a shape further or larger is a diverged simulation, not drawn
 
 
 # ---- reading ------------------------------------------------------------------------------
@@ -57,8 +58,12 @@ def check_shape(path, r):
     if r["step"] < 0:
         figlib.die(f"{n}: step {r['step']} (expected a step number >= 0)")
     size = [r["sx"], r["sy"], r["sz"]]
-    if min(size) < 0:
-        figlib.die(f"{n}: size {size[0]:g} {size[1]:g} {size[2]:g} (expected extents >= 0)")
+    if min(size) < 0 or max(size) > FAR:
+        figlib.die(f"{n}: size {size[0]:g} {size[1]:g} {size[2]:g} (expected extents >= 0 and at "
+                   f"most {FAR:g} m)")
+    if max(abs(r[c]) for c in ("px", "py", "pz")) > FAR:
+        figlib.die(f"{n}: position {r['px']:g} {r['py']:g} {r['pz']:g} (expected within {FAR:g} m "
+                   "of the robot: a diverged simulation cannot be drawn)")
     R = [r[c] for c in ROT]
     for i in range(3):
         for j in range(3):

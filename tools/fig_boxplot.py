@@ -27,7 +27,8 @@ DEFAULT = {"robustness": "fig3_4", "generalisation": "fig3_9"}
 
 
 def samples(path, test):
-    rows = figlib.read_csv(path, COLUMNS, "a post-evaluation summary")
+    rows = figlib.read_csv(path, COLUMNS, "a post-evaluation summary", schema=csvschema.SUMMARY,
+                           key=("test", "condition", "run", "individual"))
     for r in rows:
         if r["trials"] < 1 or not 0 <= r["successes"] <= r["trials"]:
             figlib.die(f"{path}:{r['_line']}: successes {r['successes']} of {r['trials']} trials "

@@ -54,30 +54,27 @@ def integration_tests(run_dir):
 
 
 def header_of(path):
-    """the first line's column names, so the run's chained and varied columns can be asked for"""
-    try:
-        with open(path, encoding="utf-8", errors="replace") as f:
-            for line in f:
-                if line.strip() and not line.startswith("#"):
-                    return line.strip().split(",")
-    except OSError as e:
-        figlib.die(f"{path}: {e.strerror}")
-    return []
+    """(line, column names) of the header, so the run's chained and varied columns can be asked
+    for (figlib.read_fitness checks the whole file after)"""
+    for n, line in enumerate(figlib.read_text(path, WHAT), start=1):
+        if line.strip() and not line.startswith("#"):
+            return n, line.strip().split(",")
+    return 1, []
 
 
 def load(arg):
     path = arg if arg.endswith(".csv") and not os.path.isdir(arg) else os.path.join(arg, "fitness.csv")
-    header = header_of(path)
+    line, header = header_of(path)
     nchain = sum(1 for c in header if c.startswith("best_c") and c[6:].isdigit())
     nvaried = sum(1 for c in header if c.startswith("best_v") and c[6:].isdigit())
     if header and nchain == 0:
-        figlib.die(f"{path}:1: header without best_c0 (expected {WHAT})")
+        figlib.die(f"{path}:{line}: header without best_c0 (expected {WHAT})")
     cols = csvschema.pick(csvschema.FITNESS, "generation", "best_F_chain")
     cols.update({T % i: "int" for i in range(NFIXED)})
     cols.update({H % i: "int" for i in range(NHAND)})
     cols.update({C % i: "int" for i in range(nchain)})
     cols.update({V % i: "int" for i in range(nvaried)})
-    rows = figlib.read_csv(path, cols, WHAT)
+    rows = figlib.read_fitness(path, cols, WHAT)
 
     def count(r, name, n, first=0):
         return sum(r[name % i] for i in range(first, first + n))

@@ -30,7 +30,7 @@ COLOURS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e
 
 def load(arg):
     path = arg if arg.endswith(".csv") and not os.path.isdir(arg) else os.path.join(arg, "fitness.csv")
-    return path, figlib.read_csv(path, COLUMNS, "an integrated run's fitness.csv")
+    return path, figlib.read_fitness(path, COLUMNS, "an integrated run's fitness.csv")
 
 
 def plotted(path, rows, start):

@@ -34,7 +34,7 @@ def config_bonus(run_dir):
 
 def load(arg):
     path = arg if arg.endswith(".csv") and not os.path.isdir(arg) else os.path.join(arg, "fitness.csv")
-    rows = figlib.read_csv(path, COLUMNS, "a primitive run's fitness.csv")
+    rows = figlib.read_fitness(path, COLUMNS, "a primitive run's fitness.csv")
     ntrials = sum(1 for t in range(len(rows[0])) if TRIAL % t in rows[0])
     return {"path": path, "rows": rows, "max_bonus": config_bonus(os.path.dirname(path)) * ntrials,
             "changes": [r["generation"] for a, r in zip(rows, rows[1:]) if r["stage"] != a["stage"]]}

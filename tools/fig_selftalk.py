@@ -25,7 +25,8 @@ COLUMNS = {"condition": "str", "caretaker_condition": "str", "run": "int", "indi
 
 
 def load(path):
-    rows = figlib.read_csv(path, COLUMNS, "the output of ./apps/stats selftalk")
+    rows = figlib.read_csv(path, COLUMNS, "the output of ./apps/stats selftalk",
+                           key=("condition", "run", "individual"))
     for r in rows:
         if r["better"] not in ("selftalk", "caretaker", "none"):
             figlib.die(f"{path}:{r['_line']}: better '{r['better']}' (expected selftalk, caretaker or none)")

@@ -26,12 +26,14 @@ import csvschema  # noqa: E402
 import figlib  # noqa: E402
 
 figlib.PROG = "fig_success_maps"
-COLUMNS = csvschema.pick(csvschema.TRIALS, "test", "condition", "run", "individual", "cell", "success")
+COLUMNS = csvschema.pick(csvschema.TRIALS, "test", "condition", "run", "individual", "trial", "cell",
+                         "success")
 N = 7
 
 
 def load(path, test):
-    rows = figlib.read_csv(path, COLUMNS, "a post-evaluation trials file")
+    rows = figlib.read_csv(path, COLUMNS, "a post-evaluation trials file", schema=csvschema.TRIALS,
+                           key=("test", "condition", "run", "individual", "trial"))
     for r in rows:
         if r["test"] == test and not (0 <= r["cell"] < N * N and r["success"] in (0, 1)):
             figlib.die(f"{path}:{r['_line']}: cell {r['cell']}, success {r['success']} (expected a "

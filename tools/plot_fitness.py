@@ -13,12 +13,12 @@ The output's extension picks the format (default: the CSV's name with .svg). PNG
 matplotlib (Debian: python3-matplotlib, for /usr/bin/python3).
 """
 import argparse
-import csv
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
+import figlib  # noqa: E402
 
 PRIMS = ["reach", "open", "grasp", "move"]
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
@@ -27,31 +27,14 @@ COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "best", "mean", "stage
 COLOURS = {"best": "#1f77b4", "mean": "#ff7f0e", "reach": "#2ca02c", "open": "#9467bd",
            "grasp": "#d62728", "move": "#8c564b"}
 
-
-PROG = "plot_fitness"  # the name errors carry (tools/run_report.py reads CSVs with read())
-
-
-def die(msg):
-    print(f"{PROG}: {msg}", file=sys.stderr)
-    sys.exit(1)
+figlib.PROG = "plot_fitness"  # the name errors carry (tools/run_report.py sets its own)
+die = figlib.die
 
 
-def read(path, lo, hi):
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        die(f"{path}: {e.strerror}")
-    if not rows or "generation" not in rows[0] or "best" not in rows[0]:
-        die(f"{path}: expected a fitness.csv with columns generation,best,...")
-    out = []
-    for n, r in enumerate(rows, start=2):
-        try:
-            g = int(r["generation"])
-        except (TypeError, ValueError):
-            die(f"{path}:{n}: generation '{r.get('generation')}' is not an integer")
-        if (lo is None or g >= lo) and (hi is None or g <= hi):
-            out.append(r)
+def read(path, lo, hi, columns=("generation", "best")):
+    """the rows of fitness.csv (figlib.read_fitness: every column checked) in [lo, hi]"""
+    rows = figlib.read_fitness(path, columns)
+    out = [r for r in rows if (lo is None or r["generation"] >= lo) and (hi is None or r["generation"] <= hi)]
     if not out:
         die(f"{path}: no generation in the requested range")
     return out
@@ -121,7 +104,7 @@ def solved_spans(rows, gs, k):
     """(first, last) generations of each run of consecutive rows in which the best solves trial k"""
     spans, start = [], None
     for i, r in enumerate(rows + [None]):
-        solved = r is not None and r.get(f"best_t{k}") == "1"
+        solved = r is not None and r.get(f"best_t{k}") == 1
         if solved and start is None:
             start = gs[i]
         if not solved and start is not None:

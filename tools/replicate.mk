@@ -88,6 +88,30 @@ SET_ARGS := $(foreach s,$(SET),--set $(s))
 comma := ,
 empty :=
 space := $(empty) $(empty)
+# a shell word of any text: single quotes, each ' as '\'' (SNAPSHOT, any path, goes through it)
+sq = '$(subst ','\'',$(1))'
+
+# OUT, PRIM_RUNS and CHAIN_RUNS name make targets and prerequisites, which make cannot quote: a
+# space splits a name in two (`rm -rf $(OUT)/interim.tmp` with OUT='runs/replicate copy' removed
+# runs/replicate), ':' '%' '#' '*' and the like mean something to make, a ',' splits the
+# integrated runs' list of populations. So they are refused unless made of these characters
+# (issue 48); recipes quote every path all the same (lists of them, $^, need no quotes then).
+PATH_CHARS := a b c d e f g h i j k l m n o p q r s t u v w x y z A B C D E F G H I J K L M N O P \
+  Q R S T U V W X Y Z 0 1 2 3 4 5 6 7 8 9 . _ - / + @
+# what is left of $(1) once the characters listed in $(2) are taken out
+path_rest = $(if $(2),$(call path_rest,$(subst $(firstword $(2)),,$(1)),$(wordlist 2,$(words $(2)),$(2))),$(1))
+ifeq ($(strip $(OUT)),)
+$(error OUT is empty: expected the replication's directory, e.g. OUT=runs/replicate)
+endif
+ifneq ($(words $(OUT)),1)
+$(error OUT='$(OUT)': a name with white space, which make cannot quote in its targets; expected letters, digits and . _ - + @ / only, e.g. OUT=runs/replicate_copy)
+endif
+define check_paths
+$(foreach p,$($(1)),$(if $(call path_rest,$(p),$(PATH_CHARS)),$(error $(1): '$(p)' holds '$(call path_rest,$(p),$(PATH_CHARS))', which make cannot quote in its targets; expected letters, digits and . _ - + @ / only)))
+endef
+$(call check_paths,OUT)
+$(call check_paths,PRIM_RUNS)
+$(call check_paths,CHAIN_RUNS)
 CONDS := stct st ct ni
 # the caretaker variants of the generalisation test (thesis §3.2.5: ST-CT0, ST0)
 CONDS0 := stct st
@@ -184,7 +208,7 @@ REMEASURE ?=
 status: STATUS_ARG := --status
 cost status:
 	@$(PYTHON) tools/replicate_cost.py $(STATUS_ARG) --preset=$(PRESET) --protocol=$(PROTOCOL) --runs=$(RUNS) \
-	  --threads=$(THREADS) --out=$(OUT) --eval-cost=$(EVAL_COST) --sample=$(COST_SAMPLE) \
+	  --threads=$(THREADS) --out='$(OUT)' --eval-cost=$(EVAL_COST) --sample=$(COST_SAMPLE) \
 	  --prim-pop=$(COST_PRIM_POP) --chain-pop=$(COST_CHAIN_POP) --int-pop=$(COST_INT_POP) \
 	  --prim-args='$(PRIM_ARGS) $(SET_ARGS)' --chain-args='$(CHAIN_ARGS) $(SET_ARGS)' \
 	  --int-args='$(INT_ARGS) $(SET_ARGS)' --integ-args='$(INTEG_ARGS) $(SET_ARGS)' \
@@ -198,14 +222,16 @@ cost status:
 # is overwritten), where the same make command resumes every job to the same files. Files name
 # OUT (config.ini's integrated.populations), so restore to the OUT the snapshot was taken of.
 SNAPSHOT ?=
-NEED_SNAPSHOT = @test -n "$(SNAPSHOT)" || { echo "$@: SNAPSHOT=DIR expected (where the snapshot goes or comes from)" >&2; exit 2; }
+NEED_SNAPSHOT = @test -n $(call sq,$(SNAPSHOT)) || { echo "$@: SNAPSHOT=DIR expected (where the snapshot goes or comes from)" >&2; exit 2; }
+# tools/snapshot.sh refuses OUT and SNAPSHOT the same or one inside the other, a snapshot over a
+# run that is ahead of it (OUT and SNAPSHOT swapped) and a restore into an OUT that exists; a
+# restore is whole or not at all (copied beside, then renamed)
 snapshot:
 	$(NEED_SNAPSHOT)
-	@sh tools/snapshot.sh "$(OUT)" "$(SNAPSHOT)"
+	@sh tools/snapshot.sh $(call sq,$(OUT)) $(call sq,$(SNAPSHOT))
 restore:
 	$(NEED_SNAPSHOT)
-	@test ! -e "$(OUT)" || { echo "restore: $(OUT) exists (restoring over it would overwrite newer files): expected a path that does not exist" >&2; exit 2; }
-	@sh tools/snapshot.sh "$(SNAPSHOT)" "$(OUT)"
+	@sh tools/snapshot.sh --restore $(call sq,$(SNAPSHOT)) $(call sq,$(OUT))
 
 # ---- interim: while the study runs, the robustness test (40 trials, seconds a run) of the
 # integrated runs complete so far, with Table 3.1, the description and the successes by trial
@@ -214,43 +240,44 @@ restore:
 # (tests/check_replicate.sh).
 INT_DONE = $(patsubst %/population.genome,%,$(wildcard $(SEEDS:%=$(OUT)/int-$(1)-s%/population.genome)))
 INTERIM_CONDS = $(strip $(foreach c,$(CONDS),$(if $(call INT_DONE,$(c)),$(c))))
+interim: I = $(call sq,$(OUT)/interim.tmp)
 interim:
 	@test -n "$(INTERIM_CONDS)" || { echo "interim: no integrated run in $(OUT) is complete yet" >&2; exit 2; }
-	@rm -rf $(OUT)/interim.tmp && mkdir -p $(OUT)/interim.tmp
+	@rm -rf $(I) && mkdir -p $(I)
 	@$(foreach c,$(INTERIM_CONDS),$(POSTEVAL) robustness configs/integrated_$(c).cfg $(call INT_DONE,$(c)) \
-	  --out $(OUT)/interim.tmp/robustness-$(c) $(THREADS_ARG) $(ROB_ARGS) $(SET_ARGS) > /dev/null && ) true
-	@awk 'FNR > 1 || NR == 1' $(INTERIM_CONDS:%=$(OUT)/interim.tmp/robustness-%/summary.csv) > $(OUT)/interim.tmp/robustness.csv
+	  --out $(call sq,$(OUT)/interim.tmp/robustness-$(c)) $(THREADS_ARG) $(ROB_ARGS) $(SET_ARGS) > /dev/null && ) true
+	@awk 'FNR > 1 || NR == 1' $(foreach c,$(INTERIM_CONDS),$(call sq,$(OUT)/interim.tmp/robustness-$(c)/summary.csv)) > $(I)/robustness.csv
 	@$(foreach t,table_3_1:table robustness:describe,$(STATS) $(lastword $(subst :, ,$(t))) \
-	  $(OUT)/interim.tmp/robustness.csv --test robustness > $(OUT)/interim.tmp/$(t).raw && \
-	  sed '1s|/interim\.tmp/|/interim/|' $(OUT)/interim.tmp/$(t).raw > $(OUT)/interim.tmp/$(firstword $(subst :, ,$(t))).txt && \
-	  rm $(OUT)/interim.tmp/$(t).raw && ) true
-	@$(PYTHON) tools/replicate_report.py $(OUT)/interim.tmp --types > $(OUT)/interim.tmp/types.md
-	@rm -rf $(OUT)/interim && mv $(OUT)/interim.tmp $(OUT)/interim
+	  $(I)/robustness.csv --test robustness > $(I)/$(t).raw && \
+	  sed '1s|/interim\.tmp/|/interim/|' $(I)/$(t).raw > $(I)/$(firstword $(subst :, ,$(t))).txt && \
+	  rm $(I)/$(t).raw && ) true
+	@$(PYTHON) tools/replicate_report.py $(I) --types > $(I)/types.md
+	@rm -rf $(call sq,$(OUT)/interim) && mv $(I) $(call sq,$(OUT)/interim)
 	@echo "interim: robustness of the complete integrated runs ($(foreach c,$(INTERIM_CONDS),$(c) $(words $(call INT_DONE,$(c))))), in $(OUT)/interim/"
 	@awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$$i] = i; next } \
 	  { printf "  %-12s %-6s %2d of %d\n", $$h["run_label"], $$h["condition"], $$h["successes"], $$h["trials"] }' \
-	  $(OUT)/interim/robustness.csv
-	@cat $(OUT)/interim/table_3_1.txt $(OUT)/interim/types.md
+	  $(call sq,$(OUT)/interim/robustness.csv)
+	@cat $(call sq,$(OUT)/interim/table_3_1.txt) $(call sq,$(OUT)/interim/types.md)
 
 # ---- evolution: --resume continues a killed run to the identical files (or starts it). It
 # runs every time (FORCE): evolve writes population.genome before its last checkpoint, so a run
 # stopped between the two has its population but not its end; evolve --resume finishes it, and
 # says "complete" (writing nothing, so nothing after it is redone) for a run that is
 $(OUT)/prims-s%/population.genome: FORCE
-	@mkdir -p $(OUT)
-	$(EVOLVE) configs/prims.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(PRIM_ARGS) $(SET_ARGS) >> $(@D).log
+	@mkdir -p '$(OUT)'
+	$(EVOLVE) configs/prims.cfg --seed $* --out '$(@D)' --resume $(THREADS_ARG) $(PRIM_ARGS) $(SET_ARGS) >> '$(@D).log'
 
 # the chain stage continues primitive run N's final population, with the same seed
 $(OUT)/chain-s%/population.genome: $(OUT)/prims-s%/population.genome FORCE
-	$(EVOLVE) configs/chain_prim.cfg --seed $* --out $(@D) --resume $(THREADS_ARG) $(CHAIN_ARGS) $(SET_ARGS) \
-	  --set stage.init_population=$< >> $(@D).log
+	$(EVOLVE) configs/chain_prim.cfg --seed $* --out '$(@D)' --resume $(THREADS_ARG) $(CHAIN_ARGS) $(SET_ARGS) \
+	  --set stage.init_population='$<' >> '$(@D).log'
 
 # every integrated run starts from the same assembled genotypes: the top 10 of each primitive run
 $(OUT)/int-%/population.genome: $(PRIMITIVES) FORCE
-	@mkdir -p $(OUT)
+	@mkdir -p '$(OUT)'
 	$(EVOLVE) configs/integrated_$(word 1,$(subst -s, ,$*)).cfg --seed $(lastword $(subst -s, ,$*)) \
-	  --out $(@D) --resume $(THREADS_ARG) $(INT_ARGS) $(SET_ARGS) \
-	  --set integrated.populations=$(subst $(space),$(comma),$(strip $(PRIMITIVES))) >> $(@D).log
+	  --out '$(@D)' --resume $(THREADS_ARG) $(INT_ARGS) $(SET_ARGS) \
+	  --set integrated.populations='$(subst $(space),$(comma),$(strip $(PRIMITIVES)))' >> '$(@D).log'
 
 FORCE:
 
@@ -258,28 +285,28 @@ FORCE:
 # ---- post-evaluation (each writes DIR/trials.csv and DIR/summary.csv atomically; --resume
 # continues a killed test from its DIR/posteval.journal)
 $(POST_INTEG): $(PRIMITIVES)
-	$(POSTEVAL) integration configs/prims.cfg $(PRIMITIVES) --out $(@D) --resume $(THREADS_ARG) $(INTEG_ARGS) $(SET_ARGS)
+	$(POSTEVAL) integration configs/prims.cfg $(PRIMITIVES) --out '$(@D)' --resume $(THREADS_ARG) $(INTEG_ARGS) $(SET_ARGS)
 
 $(OUT)/posteval/robustness-%/summary.csv: $(INT_POPS)
 	$(POSTEVAL) robustness configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --out $(@D) --resume $(THREADS_ARG) $(ROB_ARGS) $(SET_ARGS)
+	  --out '$(@D)' --resume $(THREADS_ARG) $(ROB_ARGS) $(SET_ARGS)
 
 $(OUT)/posteval/generalisation-%0/summary.csv: $(INT_POPS)
 	$(POSTEVAL) generalisation configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --caretaker --out $(@D) --resume $(THREADS_ARG) $(GEN_ARGS) $(SET_ARGS)
+	  --caretaker --out '$(@D)' --resume $(THREADS_ARG) $(GEN_ARGS) $(SET_ARGS)
 
 $(OUT)/posteval/generalisation-%/summary.csv: $(INT_POPS)
 	$(POSTEVAL) generalisation configs/integrated_$*.cfg $(dir $(SEEDS:%=$(OUT)/int-$*-s%/x)) \
-	  --out $(@D) --resume $(THREADS_ARG) $(GEN_ARGS) $(SET_ARGS)
+	  --out '$(@D)' --resume $(THREADS_ARG) $(GEN_ARGS) $(SET_ARGS)
 
 # posteval writes trials.csv with summary.csv
 $(OUT)/posteval/%/trials.csv: $(OUT)/posteval/%/summary.csv
-	@test -f $@
+	@test -f '$@'
 
 # ---- one file per test, the conditions together (header once)
 define concat
-	@mkdir -p $(@D)
-	awk 'FNR > 1 || NR == 1' $^ > $@.tmp && mv $@.tmp $@
+	@mkdir -p '$(@D)'
+	awk 'FNR > 1 || NR == 1' $^ > '$@.tmp' && mv '$@.tmp' '$@'
 endef
 $(OUT)/summary/integration.csv: $(POST_INTEG)
 	$(concat)
@@ -292,23 +319,23 @@ $(OUT)/summary/generalisation-trials.csv: $(POST_GEN:summary.csv=trials.csv)
 
 # ---- statistics (./apps/stats): stdout to a file, moved into place when complete
 $(OUT)/stats/table_3_1.txt: $(OUT)/summary/robustness.csv
-	@mkdir -p $(@D)
-	$(STATS) table $< --test robustness > $@.tmp && mv $@.tmp $@
+	@mkdir -p '$(@D)'
+	$(STATS) table '$<' --test robustness > '$@.tmp' && mv '$@.tmp' '$@'
 $(OUT)/stats/table_3_2.txt: $(OUT)/summary/generalisation.csv
-	@mkdir -p $(@D)
-	$(STATS) table $< --test generalisation > $@.tmp && mv $@.tmp $@
+	@mkdir -p '$(@D)'
+	$(STATS) table '$<' --test generalisation > '$@.tmp' && mv '$@.tmp' '$@'
 $(OUT)/stats/selftalk.csv: $(OUT)/summary/generalisation-trials.csv
-	@mkdir -p $(@D)
-	$(STATS) selftalk $< $(GEN_ARGS) > $@.tmp && mv $@.tmp $@
+	@mkdir -p '$(@D)'
+	$(STATS) selftalk '$<' $(GEN_ARGS) > '$@.tmp' && mv '$@.tmp' '$@'
 $(OUT)/stats/table_3_3.txt: $(OUT)/summary/generalisation-trials.csv
-	@mkdir -p $(@D)
-	$(STATS) times $< $(GEN_ARGS) > $@.tmp && mv $@.tmp $@
+	@mkdir -p '$(@D)'
+	$(STATS) times '$<' $(GEN_ARGS) > '$@.tmp' && mv '$@.tmp' '$@'
 $(OUT)/stats/%.txt: $(OUT)/summary/%.csv
-	@mkdir -p $(@D)
-	$(STATS) describe $< --test $* > $@.tmp && mv $@.tmp $@
+	@mkdir -p '$(@D)'
+	$(STATS) describe '$<' --test $* > '$@.tmp' && mv '$@.tmp' '$@'
 
 # ---- figures (tools/fig_*.py): PNG and SVG
-FIG = $(PYTHON) tools/$(1).py $(2) -o $(OUT)/figures/$(3).png -o $(OUT)/figures/$(3).svg
+FIG = $(PYTHON) tools/$(1).py $(2) -o '$(OUT)/figures/$(3).png' -o '$(OUT)/figures/$(3).svg'
 
 # Fig. 3.12: the words of the best individual of ST-CT and of ST (the run whose best solved the
 # most robustness trials, ties the lower run: tools/best_run.py) in the integrated stage's four
@@ -320,16 +347,16 @@ WORDS_self := --set integrated.words_even=selftalk --set integrated.fitness_even
 WORDS_care := --set integrated.words_even=caretaker --set integrated.words_odd=caretaker
 FIG3_12 := $(CONDS0:%=$(OUT)/figures/fig3_12_%.png)
 $(OUT)/figures/fig3_12_%.png: $(OUT)/posteval/robustness-%/summary.csv $(INT_POPS)
-	@mkdir -p $(@D)/words-$*
-	set -- $$($(PYTHON) tools/best_run.py $<) && test $$# = 3 && \
-	  $(foreach k,0 1 2 3,$(foreach w,self care,$(REPLAY) $(OUT)/$$1/best.genome $(OUT)/$$1/config.ini \
-	    --generation $$3 --trial $(k) $(WORDS_$(w)) --out $(@D)/words-$*/$(w)-$(k).csv > /dev/null && )) \
-	  $(PYTHON) tools/fig_words.py $(foreach k,0 1 2 3,$(@D)/words-$*/self-$(k).csv+$(@D)/words-$*/care-$(k).csv) \
+	@mkdir -p '$(@D)/words-$*'
+	set -- $$($(PYTHON) tools/best_run.py '$<') && test $$# = 3 && \
+	  $(foreach k,0 1 2 3,$(foreach w,self care,$(REPLAY) "$(OUT)/$$1/best.genome" "$(OUT)/$$1/config.ini" \
+	    --generation $$3 --trial $(k) $(WORDS_$(w)) --out '$(@D)/words-$*/$(w)-$(k).csv' > /dev/null && )) \
+	  $(PYTHON) tools/fig_words.py $(foreach k,0 1 2 3,'$(@D)/words-$*/self-$(k).csv+$(@D)/words-$*/care-$(k).csv') \
 	    $(foreach k,0 1 2 3,--label "type $(k)") --title "$$1's best, generation $$3" \
-	    -o $@ -o $(@:.png=.svg) > $(@:.png=.txt)
+	    -o '$@' -o '$(@:.png=.svg)' > '$(@:.png=.txt)'
 
 $(OUT)/figures/.done: $(PRIMITIVES) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selftalk.csv $(FIG3_12)
-	@mkdir -p $(@D)
+	@mkdir -p '$(@D)'
 	$(call FIG,fig_prim_fitness,$(PRIM_POPS:/population.genome=),fig3_1)
 	$(if $(filter chain,$(PROTOCOL)),$(call FIG,fig_chain,$(CHAIN_POPS:/population.genome=),fig_chain))
 	$(call FIG,fig_integration,$(OUT)/summary/integration.csv $(FIG3_3_ARGS),fig3_3)
@@ -338,8 +365,8 @@ $(OUT)/figures/.done: $(PRIMITIVES) $(INT_POPS) $(SUMMARIES) $(OUT)/stats/selfta
 	$(call FIG,fig_boxplot,$(OUT)/summary/generalisation.csv --test generalisation,fig3_9)
 	$(call FIG,fig_success_maps,$(OUT)/summary/generalisation-trials.csv,fig3_10)
 	$(call FIG,fig_selftalk,$(OUT)/stats/selftalk.csv,fig3_11)
-	touch $@
+	touch '$@'
 
 $(REPORT): $(STATS_OUT) $(OUT)/figures/.done
-	$(PYTHON) tools/replicate_report.py $(OUT) --preset $(PRESET) --runs $(RUNS) --protocol $(PROTOCOL) \
-	  $(if $(GIVEN_PRIMS),--prim-runs '$(GIVEN_PRIMS)' $(if $(GIVEN_CHAINS),--chain-runs '$(GIVEN_CHAINS)')) -o $@
+	$(PYTHON) tools/replicate_report.py '$(OUT)' --preset $(PRESET) --runs $(RUNS) --protocol $(PROTOCOL) \
+	  $(if $(GIVEN_PRIMS),--prim-runs '$(GIVEN_PRIMS)' $(if $(GIVEN_CHAINS),--chain-runs '$(GIVEN_CHAINS)')) -o '$@'

@@ -46,7 +46,9 @@ import textwrap
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import csvschema  # noqa: E402
+import figlib  # noqa: E402
 
+figlib.PROG = "replicate cost"
 # fitness.csv's columns --status reads, by the library's names (tools/csvschema.py)
 GENERATION, STAGE = csvschema.pick(csvschema.FITNESS, "generation", "stage")
 THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
@@ -54,11 +56,14 @@ CONDS = [("stct", "ST-CT"), ("st", "ST"), ("ct", "CT"), ("ni", "NI")]
 CONDS0 = ("stct", "st")  # the generalisation test's caretaker variants (ST-CT0, ST0)
 CACHE_FIELDS = ["host", "build", "kind", "args", "n", "mean_cpu_s", "min_cpu_s", "max_cpu_s",
                 "measured"]
-
-
-def die(msg):
-    print("replicate cost: " + msg, file=sys.stderr)
-    sys.exit(2)
+# the cache's columns as read back: what was measured, each number finite (a nan there priced the
+# replication at "nan core-hours")
+CACHE_KINDS = {"host": "str", "build": "str", "kind": "str", "args": "str", "n": "count",
+               "mean_cpu_s": "positive", "min_cpu_s": "positive", "max_cpu_s": "positive",
+               "measured": "text"}
+CACHE_WHAT = ("the measured costs replicate cost keeps (tools/replicate_cost.py; REMEASURE=1 "
+              "measures again and writes it anew)")
+die = figlib.die
 
 
 def step_args(var, text):
@@ -103,15 +108,16 @@ class Meter:
         self.path = os.path.join(a.out, "cost", "costs.csv")
         self.rows = []
         if os.path.exists(self.path) and not a.remeasure:
-            with open(self.path, newline="") as f:
-                self.rows = [r for r in csv.DictReader(f) if r.get("host") and r.get("args")]
+            self.rows = [{k: r["_raw"][k] for k in CACHE_FIELDS}
+                         for r in figlib.read_csv(self.path, CACHE_KINDS, CACHE_WHAT,
+                                                  key=("host", "build", "args"))]
         self.assumed = []
         for s in a.assume or []:
             kind, _, v = s.partition("=")
             try:
-                self.assumed.append((kind, float(v)))
+                self.assumed.append((kind, figlib.KINDS["positive"][0](v.strip())))
             except ValueError:
-                die("--assume %s: expected KIND=SECONDS" % s)
+                die("--assume %s: expected KIND=SECONDS, a finite number > 0" % s)
         self.used = {"measured now": 0, "measured earlier": 0, "assumed": 0}
 
     def run(self, args, count):
@@ -396,17 +402,10 @@ def table(a, meter, steps, costs, notes, threads):
 def generations_run(run, stage):
     """the generations a run directory's fitness.csv holds (of one stage, if given)"""
     path = os.path.join(run, "fitness.csv")
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except FileNotFoundError:
+    if not os.path.exists(path):
         return 0
-    except (OSError, csv.Error) as e:
-        die("%s: cannot read: %s" % (path, e))
-    if rows and (GENERATION not in rows[0] or (stage and STAGE not in rows[0])):
-        die("%s:1: expected the columns %s%s" % (path, GENERATION, " and " + STAGE if stage
-                                                 else ""))
-    return len({r[GENERATION] for r in rows if not stage or r[STAGE] == stage})
+    rows = figlib.read_fitness(path, (GENERATION, STAGE) if stage else (GENERATION,), live=True)
+    return sum(1 for r in rows if not stage or r[STAGE] == stage)
 
 
 def job_progress(step, run):

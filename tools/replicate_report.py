@@ -11,7 +11,6 @@ fitness.csv of the given runs' directories instead,
 OUT/int-<cond>-s*/fitness.csv, OUT/summary/*.csv,
 OUT/stats/*.txt (./apps/stats's tables) and links OUT/figures/*.png. Written atomically."""
 import argparse
-import csv
 import glob
 import json
 import os
@@ -21,7 +20,10 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import csvschema  # noqa: E402
+import figlib  # noqa: E402
 import runconfig  # noqa: E402
+
+figlib.PROG = "replicate_report"
 
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 FITNESS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success", "best",
@@ -46,9 +48,7 @@ PROTOCOLS = {
 }
 
 
-def die(msg):
-    print("replicate_report: " + msg, file=sys.stderr)
-    sys.exit(1)
+die = figlib.die
 
 
 def quantile(sorted_x, p):
@@ -76,15 +76,26 @@ def fmt5(q):
     return "-" if q is None else "%g (%g, %g)" % q
 
 
-def read_rows(path):
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        die("%s: %s" % (path, e.strerror))
-    if not rows:
-        die("%s: no rows after the header" % path)
-    return rows
+def as_text(rows):
+    """figlib's checked rows with their values as written (the sections convert what they use)"""
+    return [dict(r["_raw"], _line=r["_line"]) for r in rows]
+
+
+def read_fitness(path, *columns):
+    """a run's fitness.csv, every column checked (figlib.read_fitness), the named ones required"""
+    return as_text(figlib.read_fitness(path, ("generation",) + columns))
+
+
+def read_post(path, table, what, *columns):
+    """a post-evaluation file (summary.csv, trials.csv) or ./apps/stats selftalk's, checked by its
+    table (csvschema's, or None), the named columns required"""
+    key = {"summary": ("test", "condition", "run", "individual"),
+           "trials": ("test", "condition", "run", "individual", "trial"),
+           "selftalk": ("condition", "run", "individual")}[table]
+    schema = {"summary": csvschema.SUMMARY, "trials": csvschema.TRIALS,
+              "selftalk": {"condition": "str", "run": "int", "individual": "int", "better": "str"}}[table]
+    kinds = {c: schema[c] for c in key + columns}
+    return as_text(figlib.read_csv(path, kinds, what, key=key, schema=schema))
 
 
 def run_seed(path):
@@ -108,7 +119,7 @@ def success_genotypes(run_dir):
 
 def prim_run(path):
     """one primitive run: generations to complete simple-prim and main-prim (None: not)"""
-    rows = read_rows(path)
+    rows = read_fitness(path, "stage", "all_success", "best_successes")
     need = success_genotypes(os.path.dirname(path))
     simple = [int(r["generation"]) for r in rows if r["stage"] == "simple-prim"]
     main = [r for r in rows if r["stage"] == "main-prim"]
@@ -162,7 +173,7 @@ def section_chain(out, given):
     if not paths:
         die("%s: no chain-s*/fitness.csv (expected the chain runs of --protocol chain)" % out)
     for path in paths:
-        last = read_rows(path)[-1]
+        last = read_fitness(path, *("best_t%d" % k for k in range(NFIXED)), "best_c0")[-1]
         fixed = sum(int(last["best_t%d" % k]) for k in range(NFIXED))
         chained = [int(v) for k, v in last.items() if re.fullmatch(r"best_c\d+", k)]
         lines.append("| %d | %d | %d/%d | %d/%d |" % (run_seed(path), int(last["generation"]) + 1,
@@ -175,7 +186,8 @@ def summary_by(out, test):
     if not os.path.exists(path):
         return None
     res = {}
-    for r in read_rows(path):
+    for r in read_post(path, "summary", "a post-evaluation summary (summary/TEST.csv)", "successes",
+                       "trials", "open_jumped"):
         pct = 100.0 * int(r["successes"]) / int(r["trials"]) if int(r["trials"]) else 0.0
         res.setdefault(r["condition"], []).append((int(r["run"]), int(r["individual"]), pct, r))
     return res
@@ -185,8 +197,7 @@ def stats_text(out, name):
     path = os.path.join(out, "stats", name)
     if not os.path.exists(path):
         return ["(missing: %s)" % path]
-    with open(path) as f:
-        return [l.rstrip("\n") for l in f if not l.startswith("#")]
+    return [line for line in figlib.read_text(path, "./apps/stats's output") if not line.startswith("#")]
 
 
 def thesis_matrix(tab):
@@ -219,7 +230,7 @@ def section_integrated(out):
              "|---|---|---|---|---|---|---|"]
     for key, name in CONDS:
         for p in sorted(glob.glob(os.path.join(out, "int-%s-s*" % key, "fitness.csv"))):
-            r = read_rows(p)[-1]
+            r = read_fitness(p, "best", "best_bonus", "best_bonus_auto", "best_successes")[-1]
             trials = len([c for c in r if re.match(r"best_t\d+$", c)])
             lines.append("| %s | %d | %d | %s | %s | %s | %s/%d |" % (
                 name, run_seed(p), int(r["generation"]) + 1, "%.1f" % float(r["best"]),
@@ -238,7 +249,7 @@ def int_run_counts(run_dir, robustness):
     trials = run_value(run_dir, "integrated", "trials", 8, int)
     words = [run_value(run_dir, "integrated", "words_" + k, "caretaker", str) for k in ("even", "odd")]
     auto_max = 2 * bonus * sum(1 for i in range(trials) if words[i % 2] != "caretaker")
-    rows = read_rows(os.path.join(run_dir, "fitness.csv"))
+    rows = read_fitness(os.path.join(run_dir, "fitness.csv"), "best_bonus_auto")
     full = [int(r["generation"]) for r in rows
             if auto_max > 0 and float(r["best_bonus_auto"]) >= auto_max - 1e-9]
     rob = robustness.get(os.path.basename(run_dir))
@@ -294,7 +305,8 @@ def section_types(root, th):
         if not os.path.exists(path):
             continue
         runs = {}
-        for r in read_rows(path):
+        for r in read_post(path, "trials", "a post-evaluation's trials.csv", "run_label", "type",
+                           "success"):
             n = runs.setdefault(r["run_label"], [[0, 0] for _ in range(4)])
             n[int(r["type"]) % 4][0] += int(r["success"])
             n[int(r["type"]) % 4][1] += 1
@@ -336,7 +348,7 @@ def section_selftalk(out, th):
     path = os.path.join(out, "stats", "selftalk.csv")
     better = {}
     if os.path.exists(path):
-        for r in read_rows(path):
+        for r in read_post(path, "selftalk", "./apps/stats selftalk's output", "better"):
             if r["better"] == "selftalk":
                 better[r["condition"]] = better.get(r["condition"], 0) + 1
     t = th["selftalk_better"]
@@ -383,7 +395,7 @@ def section_strategies(out):
             continue
         title = ""
         by_type = {}
-        for line in open(path, encoding="utf-8"):
+        for line in figlib.read_text(path, "tools/fig_words.py's output"):
             if line.startswith("fig_words: title: "):
                 title = line[len("fig_words: title: "):].strip().replace("'s best", "")
             m = WORD_RUN.match(line.rstrip("\n"))

@@ -17,12 +17,12 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
-import plot_fitness  # noqa: E402
+import figlib  # noqa: E402
 import runconfig  # noqa: E402
-from plot_fitness import PRIMS, read as read_fitness  # noqa: E402
+from plot_fitness import PRIMS  # noqa: E402
 from runs_summary import success_genotypes  # noqa: E402
 
-plot_fitness.PROG = "run_report"
+figlib.PROG = "run_report"
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "best", "stage", "all_success", "best_t%d")
 
@@ -35,16 +35,10 @@ FILES = [  # (name, what it holds)
 ]
 
 
-def die(msg):
-    print(f"run_report: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
 def read_rows(path):
-    rows = read_fitness(path, None, None)
-    if "all_success" not in rows[0] or "best_t0" not in rows[0]:
-        die(f"{path}: expected the fitness.csv of apps/evolve (with all_success, best_t0..15)")
-    return rows
+    """a primitive run's fitness.csv: its stages, their completions and the trials the best solves"""
+    return figlib.read_fitness(path, ("generation", "best", "stage", "all_success", "best_t0"),
+                               "the fitness.csv of a primitive run of ./apps/evolve")
 
 
 def stage_lines(rows, need):
@@ -55,24 +49,26 @@ def stage_lines(rows, need):
             seen.append(r["stage"])
     for stage in seen:
         mine = [r for r in rows if r["stage"] == stage]
-        done = next((i for i, r in enumerate(mine) if int(r["all_success"]) >= need), None)
+        done = next((i for i, r in enumerate(mine) if r["all_success"] >= need), None)
         if done is not None:
             r = mine[done]
             lines.append(f"{stage}: complete at generation {r['generation']} ({r['all_success']} "
                          f"genotypes solve every trial; {need} needed), after {done + 1} "
                          f"generations of this stage")
         else:
-            most = max(int(r["all_success"]) for r in mine)
+            most = max(r["all_success"] for r in mine)
             lines.append(f"{stage}: not complete after {len(mine)} generations (at most {most} of "
                          f"the {need} genotypes needed solved every trial in one generation)")
     return lines
 
 
 def best_line(row):
-    solved = [row[f"best_t{k}"] == "1" for k in range(16)]
-    per = ", ".join(f"{p} {sum(solved[4 * i:4 * i + 4])}/4" for i, p in enumerate(PRIMS))
+    n = figlib.trial_columns(row)
+    solved = [row[f"best_t{k}"] == 1 for k in range(n)]
+    per = ", ".join(f"{p} {sum(solved[4 * i:4 * i + 4])}/{len(solved[4 * i:4 * i + 4])}"
+                    for i, p in enumerate(PRIMS) if solved[4 * i:4 * i + 4])
     return (f"the best of the last generation ({row['generation']}, {row['stage']}): fitness "
-            f"{float(row['best']):.2f}, solves {sum(solved)}/16 trials ({per})")
+            f"{row['best']:.2f}, solves {sum(solved)}/{n} trials ({per})")
 
 
 def protocol_line(d):
@@ -83,7 +79,7 @@ def protocol_line(d):
         lcp = runconfig.value(d, "dynamics", "lcp", None, str)
         stages = runconfig.value(d, "stage", "stages", None, str)
     except (ValueError, KeyError) as e:
-        die(f"{d}/config.ini: {e}")
+        figlib.die(str(e))
     if stages is None:
         return f"reach starts and contact solver: not recorded (no {d}/config.ini)"
     # a config.ini made before a key existed reads with the key's default, as evolve reads it

@@ -14,7 +14,10 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
+import figlib  # noqa: E402
 import runconfig  # noqa: E402
+
+figlib.PROG = "runs_summary"
 
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 COLUMNS = csvschema.pick(csvschema.FITNESS, "generation", "stage", "all_success", "best",
@@ -27,31 +30,27 @@ def success_genotypes(run_dir):
     try:
         return runconfig.value(run_dir, "ga", "success_genotypes", 5, int)
     except ValueError as e:
-        sys.exit(f"runs_summary: {e}")
+        figlib.die(str(e))
 
 
 def summarise(run_dir):
     path = run_dir + "/fitness.csv"
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        sys.exit("runs_summary: %s: %s" % (path, e.strerror))
-    if not rows or "all_success" not in rows[0]:
-        sys.exit("runs_summary: %s: expected the fitness.csv of apps/evolve (with all_success)" % path)
+    rows = figlib.read_fitness(path, ("generation", "stage", "all_success", "best",
+                                      "best_successes", "best_t0"),
+                               "the fitness.csv of a primitive run of ./apps/evolve")
     done, need = {}, success_genotypes(run_dir)
     for r in rows:
-        if int(r["all_success"]) >= need and r["stage"] not in done:
-            done[r["stage"]] = int(r["generation"])
+        if r["all_success"] >= need and r["stage"] not in done:
+            done[r["stage"]] = r["generation"]
     last = rows[-1]
-    trials = "".join(last["best_t%d" % t] for t in range(16))
+    trials = "".join(str(last["best_t%d" % t]) for t in range(figlib.trial_columns(last)))
     return {
         "run": run_dir,
-        "generations": int(last["generation"]) + 1,
+        "generations": last["generation"] + 1,
         "simple_prim_done": done.get("simple-prim", ""),
         "main_prim_done": done.get("main-prim", ""),
         "final_stage": last["stage"],
-        "final_best": last["best"],
+        "final_best": last["_raw"]["best"],
         "final_best_successes": last["best_successes"],
         "final_best_trials": trials,
     }

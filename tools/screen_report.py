@@ -8,7 +8,6 @@ succeed at least once, the words heard, open jumped) beside the same trials with
 
 DIR is a screen's directory (fitness.csv, progress.log, integration/, integration-nowords/)."""
 import collections
-import csv
 import os
 import re
 import statistics
@@ -16,7 +15,10 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
+import figlib  # noqa: E402
 import runconfig  # noqa: E402
+
+figlib.PROG = "screen_report"
 
 # the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
 SUMMARY = csvschema.pick(csvschema.SUMMARY, "successes")
@@ -24,25 +26,18 @@ TRIALS = csvschema.pick(csvschema.TRIALS, "heard", "open_jumped")
 FITNESS = csvschema.pick(csvschema.FITNESS, "best_t%d", "best_h%d", "best_F_chain", "best_c%d", "best_v%d")
 
 
-def die(msg):
-    sys.exit("screen_report: " + msg)
-
-
-def read_csv(path):
-    try:
-        with open(path, newline="") as f:
-            return list(csv.DictReader(f))
-    except OSError as e:
-        die("%s: %s" % (path, e.strerror))
+die = figlib.die
 
 
 def integration(d):
     """successes, median and genotypes >= 1 of summary.csv; heard split and open jumped"""
-    s = read_csv(os.path.join(d, "summary.csv"))
-    t = read_csv(os.path.join(d, "trials.csv"))
-    per = [int(r["successes"]) for r in s]
+    s = figlib.read_csv(os.path.join(d, "summary.csv"), SUMMARY, "an integration test's summary.csv",
+                        schema=csvschema.SUMMARY)
+    t = figlib.read_csv(os.path.join(d, "trials.csv"), TRIALS, "an integration test's trials.csv",
+                        schema=csvschema.TRIALS)
+    per = [r["successes"] for r in s]
     heard = collections.Counter(r["heard"] for r in t)
-    jumped = sum(int(r["open_jumped"]) for r in t)
+    jumped = sum(r["open_jumped"] for r in t)
     return sum(per), len(t), statistics.median(per), sum(p > 0 for p in per), len(per), heard, jumped
 
 
@@ -53,7 +48,7 @@ def cost(d):
     if not os.path.exists(path):
         return None
     sessions, first, last, sec = [], None, None, 0
-    for line in open(path, errors="replace"):
+    for line in figlib.read_text(path, "evolve's progress log"):
         if line.startswith("evolve: ") and ", output in " in line:  # a (re)started run
             sessions.append((first, last, sec))
             first, last, sec = None, None, 0
@@ -78,22 +73,20 @@ def replace_generations(d):
 
 
 def row(d):
-    rows = read_csv(os.path.join(d, "fitness.csv"))
-    if not rows:
-        die("%s/fitness.csv: no generation" % d)
+    rows = figlib.read_fitness(os.path.join(d, "fitness.csv"), ("generation", "best_t15"),
+                               "a screened run's fitness.csv (main-prim)")
     last = rows[-1]
-    fixed = sum(int(last["best_t%d" % t]) for t in range(16))
+    fixed = sum(last["best_t%d" % t] for t in range(16))
     extra = ""
-    if "best_h0" in last:
-        extra += ", hand-over %d/12" % sum(int(last["best_h%d" % t]) for t in range(12))
-    if "best_v0" in last and int(last["generation"]) < replace_generations(d):
+    nh, nv, nc = (figlib.trial_columns(last, name) for name in ("best_h%d", "best_v%d", "best_c%d"))
+    if nh:
+        extra += ", hand-over %d/%d" % (sum(last["best_h%d" % t] for t in range(nh)), nh)
+    if nv and last["generation"] < replace_generations(d):
         extra += ", varied: replacing (open and grasp from drawn starts)"
-    elif "best_v0" in last:
-        extra += ", varied %d/%d" % (sum(int(last["best_v%d" % t]) for t in range(csvschema.FITNESS_VARIED_TRIALS)),
-                                     csvschema.FITNESS_VARIED_TRIALS)
+    elif nv:
+        extra += ", varied %d/%d" % (sum(last["best_v%d" % t] for t in range(nv)), nv)
     if "best_F_chain" in last:
-        n = len([k for k in last if re.match(r"best_c\d+$", k)])
-        extra += ", chained %d/%d" % (sum(int(last["best_c%d" % t]) for t in range(n)), n)
+        extra += ", chained %d/%d" % (sum(last["best_c%d" % t] for t in range(nc)), nc)
     c = cost(d)
     out = ["`%s`" % os.path.basename(os.path.normpath(d)), str(len(rows)),
            "%.0f s" % c if c else "?", "%d/16%s" % (fixed, extra)]

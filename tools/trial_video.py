@@ -83,14 +83,11 @@ def read_trace(path):
 
 def read_summary(path, nsteps):
     """(caption, {key: value}) of replay's standard output: its line 'trial K ...'"""
-    try:
-        with open(path, encoding="utf-8", errors="replace") as f:
-            lines = f.read().splitlines()
-    except OSError as e:
-        figlib.die(f"{path}: {e.strerror}")
+    lines = figlib.read_text(path, "./apps/replay's standard output")
     found = [(n, s) for n, s in enumerate(lines, start=1) if s.startswith("trial ")]
     if len(found) != 1:
-        figlib.die(f"{path}: {len(found)} lines 'trial K ...' (expected one: ./apps/replay's "
+        at = found[1][0] if found else max(1, len(lines))
+        figlib.die(f"{path}:{at}: {len(found)} lines 'trial K ...' (expected one: ./apps/replay's "
                    "standard output)")
     n, line = found[0]
     words = [t for t in line.split() if "=" not in t]

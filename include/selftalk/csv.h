@@ -88,13 +88,15 @@ int st_csv_write_row(FILE *f, const stCsvSchema *s, const void *row);
 
 /* The rows of a file read: data holds n rows of schema->row_size bytes in file order (each
  * field of the first nread columns filled, the others 0), line each row's line, order the rows
- * by key (the first nkey columns; no two equal). */
+ * by key (the first nkey columns; no two equal); name the file's name as given, so that what
+ * is found in the rows later names FILE:LINE too. */
 typedef struct stCsvRows {
   const stCsvSchema *schema;
   char *data;
   int n;
   int *line;
   int *order;
+  char *name;
 } stCsvRows;
 
 /* Reads and checks a whole file (the bounded reader: at most ST_FILE_MAX bytes, no NUL byte);

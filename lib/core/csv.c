@@ -370,8 +370,8 @@ static stStatus parse_cb(const char *name, char *text, size_t len, void *ctx, ch
   return parse_text(&p->r, text, len, p->rows);
 }
 
-static void parsing_init(parsing *p, const char *name, const stCsvSchema *s, const void *ctx,
-                         stCsvRows *rs, char *err, size_t errsz) {
+static stStatus parsing_init(parsing *p, const char *name, const stCsvSchema *s,
+                             const void *ctx, stCsvRows *rs, char *err, size_t errsz) {
   ST_ASSERT(s && s->col && s->nkey <= s->nread && s->nread <= s->ncols);
   for (int i = 0; i < s->nread; i++) /* a name read fits its field */
     ST_ASSERT(s->col[i].kind != ST_CSV_NAME || s->col[i].size >= ST_CSV_NAME_LEN);
@@ -380,14 +380,18 @@ static void parsing_init(parsing *p, const char *name, const stCsvSchema *s, con
   p->rows = rs;
   memset(rs, 0, sizeof *rs);
   rs->schema = s;
+  const size_t n = strlen(name) + 1;
+  if (!(rs->name = malloc(n))) return st__errf(err, errsz, "%s: out of memory", name), ST_ERR_NOMEM;
+  memcpy(rs->name, name, n);
+  return ST_OK;
 }
 
 stStatus st__csv_parse(const char *name, const char *text, size_t len, const stCsvSchema *s,
                        const void *ctx, stCsvRows *rows, char *err, size_t errsz) {
   ST_ASSERT(name && (text || len == 0) && rows);
   parsing p;
-  parsing_init(&p, name, s, ctx, rows, err, errsz);
-  stStatus st = st__text_parse(name, text, len, parse_cb, &p, err, errsz);
+  stStatus st = parsing_init(&p, name, s, ctx, rows, err, errsz);
+  if (!st) st = st__text_parse(name, text, len, parse_cb, &p, err, errsz);
   if (st) st_csv_rows_free(rows);
   return st;
 }
@@ -396,8 +400,8 @@ stStatus st_csv_read(const char *path, const stCsvSchema *s, const void *ctx, st
                      char *err, size_t errsz) {
   ST_ASSERT(path && rows);
   parsing p;
-  parsing_init(&p, path, s, ctx, rows, err, errsz);
-  stStatus st = st__text_read_parse(path, parse_cb, &p, err, errsz);
+  stStatus st = parsing_init(&p, path, s, ctx, rows, err, errsz);
+  if (!st) st = st__text_read_parse(path, parse_cb, &p, err, errsz);
   if (st) st_csv_rows_free(rows);
   return st;
 }
@@ -407,7 +411,8 @@ void st_csv_rows_free(stCsvRows *rows) {
   free(rows->data);
   free(rows->line);
   free(rows->order);
-  rows->data = NULL, rows->line = rows->order = NULL;
+  free(rows->name);
+  rows->data = NULL, rows->line = rows->order = NULL, rows->name = NULL;
   rows->n = 0;
 }
 

@@ -19,10 +19,15 @@ int st_post_names_index(const stPostNames *c, const char *name) {
   return -1;
 }
 
-static stStatus names_add(stPostNames *c, const char *name, char *err, size_t errsz) {
+/* row i's name (its test or its condition, what) into c; the first one too many names the file
+ * and the row's line */
+static stStatus names_add(stPostNames *c, const stCsvRows *rs, int i, const char *name,
+                          const char *what, const char *where, char *err, size_t errsz) {
   if (st_post_names_index(c, name) >= 0) return ST_OK;
   if (c->n == ST_POST_MAX_NAMES)
-    return st__errf(err, errsz, "more than %d conditions (or tests)", ST_POST_MAX_NAMES),
+    return st__errf(err, errsz, "%s:%d: %s '%s': more than %d %ss %s (expected at most %d)",
+                    rs->name ? rs->name : "(rows)", rs->line ? rs->line[i] : i + 1, what, name,
+                    ST_POST_MAX_NAMES, what, where, ST_POST_MAX_NAMES),
            ST_ERR_RANGE;
   c->name[c->n++] = name;
   return ST_OK;
@@ -52,7 +57,8 @@ stStatus st_post_tests(const stCsvRows *rs, stPostNames *tests, char *err, size_
   ST_ASSERT(rs && tests);
   memset(tests, 0, sizeof *tests);
   stStatus st = ST_OK;
-  for (int i = 0; i < rs->n && !st; i++) st = names_add(tests, test_of(rs, i), err, errsz);
+  for (int i = 0; i < rs->n && !st; i++)
+    st = names_add(tests, rs, i, test_of(rs, i), "test", "in the file", err, errsz);
   return st;
 }
 
@@ -62,7 +68,8 @@ static stStatus conditions(const stCsvRows *rs, const char *test, stPostNames *c
   memset(c, 0, sizeof *c);
   stStatus st = ST_OK;
   for (int i = 0; i < rs->n && !st; i++)
-    if (!strcmp(test_of(rs, i), test)) st = names_add(c, cond_of(rs, i), err, errsz);
+    if (!strcmp(test_of(rs, i), test))
+      st = names_add(c, rs, i, cond_of(rs, i), "condition", "in the test", err, errsz);
   if (!st) names_order(c);
   return st;
 }
