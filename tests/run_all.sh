@@ -51,6 +51,7 @@ run_part "trial pages: replay --html in headless Chromium" bash tests/check_html
 run_part "trial videos: tools/trial_video.sh, GIF and MP4 frames, bad input" bash tests/check_video.sh
 run_part "make replicate: every step, killed and resumed (PRESET=tiny)" bash tests/check_replicate.sh
 run_part "replicate.mk's directories: OUT make cannot quote, snapshot and restore" bash tests/check_snapshot.sh
+run_part "the integrated trial-type order screen: tools/order_screen.mk, tiny" bash tests/check_order_screen.sh
 run_part "golden results (tests/golden/golden.sha256)" bash tests/check_golden.sh
 if [ "$BUILD" = build ]; then
   run_part "install + pkg-config" bash tests/check_install.sh
