@@ -132,79 +132,8 @@ static void test_config_errors(void) {
   expect_error("[ga]\nelites = 30\n\npopulation = 20\n", ST_ERR_RANGE,
                ":2: key 'ga.elites': 30 exceeds ga.population = 20 (expected elites <= population)");
   expect_error("[ga]\nelites = \n", ST_ERR_PARSE, ":2: key 'ga.elites': '' is not an integer");
-  /* a postures.vary_* key without the drawn starts would do nothing */
-  expect_error("[postures]\nvary_draws = 5\n\nvary_tilt = 10\n", ST_ERR_RANGE,
-               ":4: key 'postures.vary_tilt': it shapes the drawn starts, which "
-               "postures.vary_starts = false turns off (expected postures.vary_starts = true, or "
-               "the key left out)");
-  expect_error("[postures]\nvary_open_high = true\n", ST_ERR_RANGE,
-               ":2: key 'postures.vary_open_high': it shapes the drawn starts");
-  {
-    char path[256], e[1024];
-    st_test_write_tmp(path, sizeof path, ".cfg", "[postures]\nvary_tilt = 10\nvary_starts = true\n");
-    stConfig v;
-    st_config_default(&v);
-    CU_ASSERT_EQUAL(st_config_load(path, &v, e, sizeof e), ST_OK);
-    CU_ASSERT(v.postures_vary_starts == 1 && v.postures_vary_tilt == 10.0);
-  }
-  /* the completion rule of chained trials needs them */
-  expect_error("[stage]\nchain_complete = fixed_chained\n", ST_ERR_RANGE,
-               ":2: key 'stage.chain_complete': it shapes the chained trials, which "
-               "stage.chain_trials = 0 turns off");
-  /* the varied trials are main-prim's: refused without the drawn starts, or in simple-prim */
-  expect_error("[postures]\nvary_trials = extra\n", ST_ERR_RANGE,
-               ":2: key 'postures.vary_trials': it shapes the drawn starts, which "
-               "postures.vary_starts = false turns off (expected postures.vary_starts = true, or "
-               "the key left out)");
-  expect_error("[postures]\nvary_starts = true\nvary_trials = extra\n", ST_ERR_RANGE,
-               ":3: key 'postures.vary_trials': extra adds main-prim trials, and stage.stages = "
-               "simple_prim runs another stage (expected stage.stages = main_prim, or "
-               "postures.vary_trials = replace)");
-  expect_error("[stage]\nstages = prims\n[postures]\nvary_starts = true\nvary_trials = extra\n",
-               ST_ERR_RANGE, ":5: key 'postures.vary_trials': extra adds main-prim trials, and "
-               "stage.stages = prims runs another stage (expected stage.stages = main_prim, or "
-               "postures.vary_trials = replace)");
-  /* replace before extra: refused without the drawn starts, and with replace throughout */
-  expect_error("[postures]\nvary_replace_generations = 40\n", ST_ERR_RANGE,
-               ":2: key 'postures.vary_replace_generations': it shapes the drawn starts, which "
-               "postures.vary_starts = false turns off");
-  expect_error("[stage]\nstages = main_prim\n[postures]\nvary_starts = true\n"
-               "vary_replace_generations = 40\n", ST_ERR_RANGE,
-               ":5: key 'postures.vary_replace_generations': 40 generations of replace before "
-               "extra, and postures.vary_trials = replace replaces throughout (expected "
-               "postures.vary_trials = extra, or the key left out)");
-  /* keys that would act on nothing: a schedule that never reaches extra, hand-over trials or
-   * drawn starts of primitives stage.primitives leaves out, a stop rule that cannot fire */
-  expect_error("[ga]\nmax_generations = 40\n[stage]\nstages = main_prim\n[postures]\n"
-               "vary_starts = true\nvary_trials = extra\nvary_replace_generations = 40\n",
-               ST_ERR_RANGE, ":8: key 'postures.vary_replace_generations': 40 generations of "
-               "replace, and ga.max_generations = 40 ends the run before the first of extra "
-               "(expected fewer than ga.max_generations)");
-  expect_error("[stage]\nstages = main_prim\nprimitives = reach\nhandover = true\n",
-               ST_ERR_RANGE, ":4: key 'stage.handover': the hand-over trials are open's, grasp's "
-               "and move's, and stage.primitives = reach evaluates none of them");
-  expect_error("[stage]\nstages = main_prim\nprimitives = reach,move\n[postures]\n"
-               "vary_starts = true\n", ST_ERR_RANGE, ":5: key 'postures.vary_starts': the drawn "
-               "starts are open's and grasp's, and stage.primitives = reach,move evaluates neither");
-  expect_error("[stage]\nstages = main_prim\nchain_trials = 8\nchain_complete = fixed_chained\n"
-               "[postures]\nvary_starts = true\n", ST_ERR_RANGE,
-               ":4: key 'stage.chain_complete': fixed_chained completes a genotype only when it "
-               "solves the 16 from their fixed starts, and postures.vary_trials = replace draws");
-  {
-    /* the nearest accepted: one generation of extra; move's hand-over trials alone; grasp's
-     * drawn starts alone; fixed_chained with extra */
-    stConfig v;
-    char e[512] = "";
-    st_config_default(&v);
-    const char *const set[] = {"ga.max_generations=41", "stage.stages=main_prim",
-                               "stage.primitives=grasp,move", "stage.handover=true",
-                               "stage.chain_trials=8", "stage.chain_complete=fixed_chained",
-                               "postures.vary_starts=true", "postures.vary_trials=extra",
-                               "postures.vary_replace_generations=40"};
-    CU_ASSERT_EQUAL(st_config_set_all(&v, set, (int)(sizeof set / sizeof set[0]), e, sizeof e),
-                    ST_OK);
-    if (e[0]) fprintf(stderr, "%s\n", e);
-  }
+  /* the trial kinds' rules (postures.vary_*, stage.handover*, stage.chain_*) are their rows',
+   * checked after loading: tests/test_trialkind.c */
   expect_error("[stage]\nprimitives = reach,grasp,lift\n", ST_ERR_RANGE,
                ":2: key 'stage.primitives': 'reach,grasp,lift' is not a list of primitives "
                "(expected a comma-separated subset of reach,open,grasp,move)");

@@ -31,7 +31,7 @@ SUMMARY = csvschema.pick(csvschema.SUMMARY, "condition", "run", "individual", "s
                          "open_jumped")
 THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
 CONDS = [("stct", "ST-CT"), ("st", "ST"), ("ct", "CT"), ("ni", "NI")]
-NFIXED = csvschema.FITNESS_PRIMITIVE_TRIALS  # main-prim's fixed trials (the thesis's 16)
+NFIXED = csvschema.TRIAL_KINDS["fixed"]  # main-prim's fixed trials (the thesis's 16)
 # what the primitive runs are (tools/replicate.mk's PROTOCOL), said at the top of the report
 PROTOCOLS = {
     "chain": "Primitives: protocol `chain` (the default): each primitive run of the thesis's "

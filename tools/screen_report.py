@@ -89,8 +89,8 @@ def row(d):
     if "best_v0" in last and int(last["generation"]) < replace_generations(d):
         extra += ", varied: replacing (open and grasp from drawn starts)"
     elif "best_v0" in last:
-        extra += ", varied %d/%d" % (sum(int(last["best_v%d" % t]) for t in range(csvschema.FITNESS_VARIED_TRIALS)),
-                                     csvschema.FITNESS_VARIED_TRIALS)
+        extra += ", varied %d/%d" % (sum(int(last["best_v%d" % t]) for t in range(csvschema.TRIAL_KINDS["varied"])),
+                                     csvschema.TRIAL_KINDS["varied"])
     if "best_F_chain" in last:
         n = len([k for k in last if re.match(r"best_c\d+$", k)])
         extra += ", chained %d/%d" % (sum(int(last["best_c%d" % t]) for t in range(n)), n)

@@ -269,6 +269,11 @@ void st_config_default(stConfig *cfg);
  * line. */
 stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz);
 
+/* The line of config file `path` that sets key i ("name = value" under its section), 0 when
+ * none does or the file cannot be read: where a check made after st_config_load (a layer
+ * above core: selftalk/trialkind.h) finds the key it blames. */
+int st_config_key_line(const char *path, int i);
+
 /* Applies one "section.key=value" override and checks the cross-key rules. */
 stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz);
 

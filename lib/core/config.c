@@ -490,104 +490,16 @@ static int check_integrated(const stConfig *c, char *msg, size_t n) {
   return -1;
 }
 
-static int is_default(const stConfig *c, const stConfig *d, const stConfigKey *k);
-
-/* keys section.prefix* that shape what a switch key turns on: changed while it is off they
- * would do nothing; returns the key blamed or -1 */
-static int check_switched(const stConfig *c, int on, const char *section, const char *prefix,
-                          const char *what, const char *switch_key, const char *off,
-                          const char *on_value, char *msg, size_t n) {
-  if (on) return -1;
-  stConfig d;
-  st_config_default(&d);
-  for (int i = 0; i < NKEYS; i++) {
-    const stConfigKey *k = &g_keys[i];
-    if (strcmp(k->section, section) || strncmp(k->name, prefix, strlen(prefix)) || is_default(c, &d, k))
-      continue;
-    snprintf(msg, n, "it shapes %s, which %s = %s turns off (expected %s %s, or the key "
-             "left out)", what, switch_key, off, switch_key, on_value);
-    return i;
-  }
-  return -1;
-}
-
-/* the primitive stages' extra trials, refused where nothing they shape would run; returns
- * the key index blamed and a message, or -1 */
-static int check_acts(const stConfig *c, char *msg, size_t n) {
-  const unsigned prims = st_config_primitive_mask(c);
-  const unsigned open_grasp = 1u << ST_PRIM_OPEN | 1u << ST_PRIM_GRASP;
-  if (c->stage_handover && !(prims & (open_grasp | 1u << ST_PRIM_MOVE))) {
-    snprintf(msg, n, "the hand-over trials are open's, grasp's and move's, and stage.primitives "
-             "= %s evaluates none of them (expected one of them in stage.primitives, or "
-             "stage.handover = false)", c->stage_primitives);
-    return st_config_find("stage", "handover");
-  }
-  if (c->postures_vary_starts && !(prims & open_grasp)) {
-    snprintf(msg, n, "the drawn starts are open's and grasp's, and stage.primitives = %s "
-             "evaluates neither (expected open or grasp in stage.primitives, or "
-             "postures.vary_starts = false)", c->stage_primitives);
-    return st_config_find("postures", "vary_starts");
-  }
-  if (c->postures_vary_replace_generations >= c->ga_max_generations) {
-    snprintf(msg, n, "%d generations of replace, and ga.max_generations = %d ends the run before "
-             "the first of extra (expected fewer than ga.max_generations)",
-             c->postures_vary_replace_generations, c->ga_max_generations);
-    return st_config_find("postures", "vary_replace_generations");
-  }
-  /* fixed_chained counts only genotypes solving the 16 from their fixed starts */
-  if (c->postures_vary_starts && c->postures_vary_trials == ST_VARY_REPLACE &&
-      c->stage_chain_trials > 0 && c->stage_chain_complete == ST_CHAIN_COMPLETE_FIXED_CHAINED) {
-    snprintf(msg, n, "fixed_chained completes a genotype only when it solves the 16 from their "
-             "fixed starts, and postures.vary_trials = replace draws open's and grasp's in every "
-             "generation, so the stage could never complete (expected postures.vary_trials = "
-             "extra, or stage.chain_complete = all)");
-    return st_config_find("stage", "chain_complete");
-  }
-  return -1;
-}
-
 /* cross-key rules; returns the key index blamed and a message, or -1 */
 static int check_rules(const stConfig *c, char *msg, size_t n) {
+  /* the trial kinds' rules are their rows' (selftalk/trialkind.h: st_trial_kinds_check) */
   int k = check_integrated(c, msg, n);
   if (k >= 0) return k;
-  if ((k = check_switched(c, c->postures_vary_starts, "postures", "vary_", "the drawn starts",
-                          "postures.vary_starts", "false", "= true", msg, n)) >= 0 ||
-      (k = check_switched(c, c->stage_handover, "stage", "handover_", "the hand-over trials",
-                          "stage.handover", "false", "= true", msg, n)) >= 0 ||
-      (k = check_switched(c, c->stage_chain_trials > 0, "stage", "chain_", "the chained trials",
-                          "stage.chain_trials", "0", "> 0", msg, n)) >= 0 ||
-      (k = check_switched(c, c->stage_chain_combine == ST_CHAIN_SUM, "stage", "chain_gate",
-                          "the summed F_chain", "stage.chain_combine", "harmonic", "= sum", msg,
-                          n)) >= 0)
-    return k;
-  /* simple-prim's trials are the 16: its varied starts can only replace theirs */
-  if (c->postures_vary_trials == ST_VARY_EXTRA && c->stage_stages != ST_STAGES_MAIN) {
-    snprintf(msg, n, "extra adds main-prim trials, and stage.stages = %s runs another stage "
-             "(expected stage.stages = main_prim, or postures.vary_trials = replace)",
-             st_config_enum_name("stage", "stages", c->stage_stages));
-    return st_config_find("postures", "vary_trials");
-  }
-  /* a schedule of replace, then extra: only extra has a second phase */
-  if (c->postures_vary_replace_generations > 0 && c->postures_vary_trials != ST_VARY_EXTRA) {
-    snprintf(msg, n, "%d generations of replace before extra, and postures.vary_trials = replace "
-             "replaces throughout (expected postures.vary_trials = extra, or the key left out)",
-             c->postures_vary_replace_generations);
-    return st_config_find("postures", "vary_replace_generations");
-  }
-  /* the elite is genotype 0, which st_ga_next fills with the previous generation's best only
-   * when it keeps elites */
-  if (c->stage_handover_rollin == ST_ROLLIN_ELITE && c->ga_elites < 1) {
-    snprintf(msg, n, "elite rolls the hand-over trials in with the generation's genotype 0, "
-             "which is the previous generation's best only with ga.elites >= 1 (expected "
-             "ga.elites >= 1, or stage.handover_rollin = self)");
-    return st_config_find("stage", "handover_rollin");
-  }
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
              "reach,open,grasp,move)", c->stage_primitives);
     return st_config_find("stage", "primitives");
   }
-  if ((k = check_acts(c, msg, n)) >= 0) return k;
   if (c->ga_elites > c->ga_population) {
     snprintf(msg, n, "%d exceeds ga.population = %d (expected elites <= population)", c->ga_elites,
              c->ga_population);
@@ -905,6 +817,33 @@ static stStatus parse_cb(const char *name, char *text, size_t len, void *cfg, ch
 stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz) {
   ST_ASSERT(path && cfg);
   return st__text_read_parse(path, parse_cb, cfg, err, errsz);
+}
+
+int st_config_key_line(const char *path, int i) {
+  ST_ASSERT(path);
+  ST_ASSERT(i >= 0 && i < NKEYS);
+  char *text;
+  size_t len;
+  char e[256];
+  if (st_text_read(path, ST_FILE_MAX, &text, &len, e, sizeof e)) return 0;
+  const char *rest = text, *line;
+  size_t n;
+  int lineno = 0, found = 0, in_section = 0;
+  const size_t nk = strlen(g_keys[i].name), ns = strlen(g_keys[i].section);
+  while (!found && st__text_line(&rest, text + len, &line, &n, NULL)) {
+    lineno++;
+    while (n && isspace((unsigned char)*line)) line++, n--;
+    if (n && *line == '[') {
+      in_section = n > ns + 1 && !strncmp(line + 1, g_keys[i].section, ns) && line[ns + 1] == ']';
+      continue;
+    }
+    if (!in_section || n <= nk || strncmp(line, g_keys[i].name, nk)) continue;
+    size_t k = nk;
+    while (k < n && (line[k] == ' ' || line[k] == '\t')) k++;
+    found = k < n && (line[k] == '=' || line[k] == ':');
+  }
+  free(text);
+  return found ? lineno : 0;
 }
 
 static stStatus set_one(stConfig *cfg, const char *assignment, int cross, char *err, size_t errsz) {
