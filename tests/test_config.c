@@ -430,6 +430,18 @@ static void test_config_stage_keys(void) {
   CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_OK);
 }
 
+/* what st_config_write writes of c, or without c st_config_help's reference, into *buf (free
+ * it) */
+static void written(const stConfig *c, char **buf) {
+  size_t len = 0;
+  *buf = NULL;
+  FILE *f = open_memstream(buf, &len);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(f);
+  if (c) st_config_write(f, c);
+  else st_config_help(f);
+  fclose(f);
+}
+
 /* the post-evaluation tests are readers like the stages: their [posteval] keys are refused by
  * evolution runs and by the other tests, a key no test reads is refused by a test with the
  * post-evaluations' reason, and st_config_check_changes judges the --set options against the
@@ -513,12 +525,8 @@ static void test_config_posteval_keys(void) {
   /* the run's stages and a test together */
   CU_ASSERT_EQUAL(st_config_check_stages(&file, ST_CONFIG_INTEGRATED | PR, err, sizeof err), ST_OK);
   /* the key reference names the readers */
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = open_memstream(&buf, &len);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(f);
-  st_config_help(f);
-  fclose(f);
+  char *buf;
+  written(NULL, &buf);
   ST_ASSERT_CONTAINS(buf, "posteval.generalisation_cells (int, default 7; an integer in [1, 1000]); "
                           "read by the generalisation test only");
   ST_ASSERT_CONTAINS(buf, "caretaker.first_step (int, default 1; an integer in [0, 100000]); read by "
@@ -527,6 +535,82 @@ static void test_config_posteval_keys(void) {
                           "the simple-prim stage only");
   CU_ASSERT_PTR_NULL(strstr(buf, "fitness.reach_height (real, default 0.095; a number in [0, 1]); read"));
   free(buf);
+}
+
+/* every key has a tier; --help-config lists them tier by tier, each key once under its tier's
+ * heading; config.ini groups each section's keys by tier under a comment, and reads back */
+static void test_config_tiers(void) {
+  int per[ST_TIER_COUNT] = {0};
+  for (int i = 0; i < st_config_nkeys(); i++) {
+    const stConfigKey *k = st_config_key(i);
+    (void)k;
+    const stConfigTier t = st_config_key_tier(i);
+    CU_ASSERT_FATAL((int)t >= 0 && t < ST_TIER_COUNT);
+    per[t]++;
+  }
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("run", "seed")), ST_TIER_RUN);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("run", "threads")), ST_TIER_SPEED);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("stage", "primitives")), ST_TIER_DIAGNOSTIC);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("stage", "handover_rollin")), ST_TIER_EXTENSION);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("postures", "vary_draws")), ST_TIER_EXTENSION);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("fitness", "bonus")), ST_TIER_PROTOCOL);
+  /* each entry of the fence names keys of the table */
+  static const struct {
+    const char *section, *name;
+  } fence[] = {
+#define ROW(t, s, k) {s, k},
+      ST_CONFIG_TIERS(ROW)
+#undef ROW
+  };
+  for (size_t r = 0; r < sizeof fence / sizeof fence[0]; r++) {
+    const size_t n = strlen(fence[r].name);
+    const int prefix = fence[r].name[n - 1] == '*';
+    int hits = 0;
+    for (int i = 0; i < st_config_nkeys(); i++) {
+      const stConfigKey *k = st_config_key(i);
+      hits += !strcmp(k->section, fence[r].section) &&
+              (prefix ? !strncmp(k->name, fence[r].name, n - 1) : !strcmp(k->name, fence[r].name));
+    }
+    if (!hits) fprintf(stderr, "\n  fence entry %s.%s names no key\n", fence[r].section, fence[r].name);
+    CU_ASSERT(hits > 0);
+  }
+  CU_ASSERT_STRING_EQUAL(st_config_tier_name(ST_TIER_EXTENSION), "extension");
+  CU_ASSERT_STRING_EQUAL(st_config_tier_name(ST_TIER_COUNT), "?");
+  char *buf, *ini;
+  written(NULL, &buf);
+  const char *at = buf;
+  for (int t = 0; t < ST_TIER_COUNT; t++) {
+    char head[64];
+    snprintf(head, sizeof head, "==== %s: ", st_config_tier_name((stConfigTier)t));
+    const char *h = strstr(buf, head);
+    CU_ASSERT_FATAL(h != NULL && h >= at);
+    at = h;
+    /* its keys before the next heading */
+    const char *next = strstr(h + 1, "\n==== ");
+    int n = 0;
+    for (int i = 0; i < st_config_nkeys(); i++) {
+      const stConfigKey *k = st_config_key(i);
+      char name[160];
+      snprintf(name, sizeof name, "\n%s.%s (", k->section, k->name);
+      const char *p = strstr(h, name);
+      if (st_config_key_tier(i) == (stConfigTier)t) CU_ASSERT(p != NULL && (!next || p < next));
+      n += p != NULL && (!next || p < next);
+    }
+    CU_ASSERT_EQUAL(n, per[t]);
+  }
+  free(buf);
+  stConfig c;
+  st_config_default(&c);
+  c.stage_handover = 1;
+  written(&c, &ini);
+  const char *stage = strstr(ini, "\n[stage]\n");
+  CU_ASSERT_PTR_NOT_NULL_FATAL(stage);
+  const char *proto = strstr(stage, "# ---- protocol: "), *run = strstr(stage, "# ---- run: ");
+  const char *ext = strstr(stage, "# ---- extension: "), *diag = strstr(stage, "# ---- diagnostic: ");
+  const char *ho = strstr(stage, "\nhandover = true\n"), *steps = strstr(stage, "\nsimple_steps = 60\n");
+  CU_ASSERT(proto && run && ext && diag && ho && steps);
+  CU_ASSERT(proto < steps && steps < run && run < ext && ext < ho && ho < diag);
+  free(ini);
 }
 
 /* ranges live in the key table: code that builds its definitions checks them there */
@@ -555,4 +639,5 @@ void st_suite_config(void) {
   ST_ADD_TEST(test_config_stage_keys);
   ST_ADD_TEST(test_config_posteval_keys);
   ST_ADD_TEST(test_config_check_number);
+  ST_ADD_TEST(test_config_tiers);
 }

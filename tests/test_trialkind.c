@@ -32,12 +32,20 @@ static void test_kind_rows(void) {
     CU_ASSERT_PTR_NOT_NULL(d->count);
     /* an indexed kind makes specs; a block kind evaluates */
     CU_ASSERT(d->indexed ? d->spec && d->primitive && d->seed_key && !d->evaluate : d->evaluate != NULL);
-    if (d->switch_key) { /* a key of the key table, and its family's keys too */
+    if (d->switch_key) { /* a key of the key table, and its family's keys too; all ours */
       const char *dot = strchr(d->switch_key, '.');
       char section[32];
       snprintf(section, sizeof section, "%.*s", (int)(dot - d->switch_key), d->switch_key);
-      CU_ASSERT(st_config_find(section, dot + 1) >= 0);
+      const int sw = st_config_find(section, dot + 1);
+      CU_ASSERT_FATAL(sw >= 0);
+      CU_ASSERT_EQUAL(st_config_key_tier(sw), ST_TIER_EXTENSION);
       CU_ASSERT(!d->family || !strncmp(d->family, section, strlen(section)));
+      for (int i = 0; d->family && i < st_config_nkeys(); i++) {
+        const stConfigKey *ck = st_config_key(i);
+        if (!strcmp(ck->section, section) && !strncmp(ck->name, d->family + strlen(section) + 1,
+                                                      strlen(d->family + strlen(section) + 1)))
+          CU_ASSERT_EQUAL(st_config_key_tier(i), ST_TIER_EXTENSION);
+      }
     }
     if (!d->indexed) continue;
     CU_ASSERT_EQUAL(st_trial_kind_first((stTrialKind)k), first);

@@ -21,6 +21,22 @@ extern "C" {
 
 #define ST_CONFIG_STR_MAX 256
 
+/* What a key is: its tier (st_config_key_tier, from ST_CONFIG_TIERS below the table).
+ * --help-config and config.ini group the keys by tier, and a run's keys away from their
+ * defaults in every tier but RUN are how it departs from the thesis's protocol
+ * (tools/run_report.py, tools/replicate_report.py's report.md). */
+typedef enum stConfigTier {
+  ST_TIER_PROTOCOL = 0, /* the thesis's protocol, and our decision where it leaves one open
+                           (docs/PROTOCOL.md): the defaults are that protocol */
+  ST_TIER_RUN,          /* what one run of the protocol is: its seed, stages, starting
+                           populations, condition (Table 2.1); runs differ in them within it */
+  ST_TIER_EXTENSION,    /* ours, not the thesis's (the chain stage's trials, palm-down and drawn
+                           starts): off at their defaults */
+  ST_TIER_DIAGNOSTIC,   /* for looking into a result, not for results */
+  ST_TIER_SPEED,        /* how fast, not what: the same results, or the same up to rounding */
+  ST_TIER_COUNT
+} stConfigTier;
+
 /* The key table. Each row: section, key, default, then
  *   INT / REAL: min, max, help     BOOL: help
  *   ENUM: choices "a|b|c" (the field holds the index), help     STR: help */
@@ -209,6 +225,26 @@ extern "C" {
   REAL(posteval, generalisation_target_y, 0.0, -2.0, 2.0, "generalisation test: target y, m (0: between T0 and T1)") \
   REAL(posteval, generalisation_target_z, 0.17, -2.0, 2.0, "generalisation test: target z, m (25 cm above the table)")
 
+/* The fence (MuJoCo lists its experimental flags apart, under "experimental"): every key that
+ * is not the thesis's protocol, by tier; a key not named here is ST_TIER_PROTOCOL. Each entry:
+ * tier, section, key or "prefix_*" (every key of the section whose name starts with prefix_).
+ * tests/test_config.c checks that each entry names keys of the table. */
+#define ST_CONFIG_TIERS(X)                                                                       \
+  /* what one run is within the protocol: seed, stages, starting populations, condition */       \
+  X(RUN, "run", "seed") X(RUN, "network", "arch") X(RUN, "stage", "stages")                       \
+  X(RUN, "stage", "init_population") X(RUN, "integrated", "populations")                          \
+  X(RUN, "integrated", "words_*") X(RUN, "integrated", "fitness_*")                               \
+  X(RUN, "integrated", "first_generation")                                                        \
+  /* ours: the chain stage's hand-over, chained and varied trials, drawn and palm-down starts */ \
+  X(EXTENSION, "stage", "handover*") X(EXTENSION, "stage", "chain_*")                             \
+  X(EXTENSION, "postures", "vary_*") X(EXTENSION, "postures", "reach_palm_down")                  \
+  /* for looking into a result */                                                                 \
+  X(DIAGNOSTIC, "stage", "primitives") X(DIAGNOSTIC, "integrated", "selftalk_gate")               \
+  /* how fast, not what */                                                                        \
+  X(SPEED, "run", "threads") X(SPEED, "dynamics", "free_motion")                                  \
+  X(SPEED, "dynamics", "contact_margin") X(SPEED, "dynamics", "motor_active_set")                 \
+  X(SPEED, "dynamics", "adaptive_*") X(SPEED, "dynamics", "lcp")
+
 /* The configuration: one field per key, named section_key. */
 #define ST__CFG_INT(s, k, d, lo, hi, h) int s##_##k;
 #define ST__CFG_REAL(s, k, d, lo, hi, h) double s##_##k;
@@ -245,6 +281,13 @@ typedef struct stConfigKey {
   const char *help;
   size_t offset;       /* of the field in stConfig */
 } stConfigKey;
+
+/* The tier of key i (0 <= i < st_config_nkeys()): the fence's (ST_CONFIG_TIERS), else
+ * ST_TIER_PROTOCOL. */
+stConfigTier st_config_key_tier(int i);
+
+/* "protocol", "run", "extension", "diagnostic", "speed"; "?" for anything else. */
+const char *st_config_tier_name(stConfigTier tier);
 
 /* Number of keys and key i (0 <= i < st_config_nkeys()). */
 int st_config_nkeys(void);
@@ -285,10 +328,11 @@ stStatus st_config_set_all(stConfig *cfg, const char *const *assignments, int n,
 /* Checks ranges and cross-key consistency of a config built in code. */
 stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz);
 
-/* Writes the config as a loadable INI file, every key with its help as a comment. */
+/* Writes the config as a loadable INI file, every key with its help as a comment; in each
+ * section the keys by tier, each tier's under a comment naming it. */
 int st_config_write(FILE *f, const stConfig *cfg);
 
-/* Writes the key reference (section, key, type, default, range, help). */
+/* Writes the key reference (section, key, type, default, range, help), tier by tier. */
 void st_config_help(FILE *f);
 
 /* Primitives named by stage.primitives, as a bit mask: bit p set for primitive p in the order

@@ -32,6 +32,41 @@ static const stConfigKey g_keys[] = {ST_CONFIG_KEYS(K_INT, K_REAL, K_BOOL, K_ENU
 /* C99 static assertion: the loader's per-key line table must hold every key */
 typedef char st__keys_fit[NKEYS <= MAX_KEYS ? 1 : -1];
 
+/* the tiers' names, and what each is, for config.ini's and --help-config's headings */
+static const char *const g_tier_name[ST_TIER_COUNT] = {"protocol", "run", "extension",
+                                                       "diagnostic", "speed"};
+static const char *const g_tier_title[ST_TIER_COUNT] = {
+    "the thesis's protocol, and our decisions where it leaves one open (docs/PROTOCOL.md)",
+    "what one run is within the protocol: seed, stages, starting populations, condition",
+    "ours, not the thesis's protocol (off at their defaults)",
+    "for looking into a result, not for results",
+    "the same results (or the same up to rounding), faster"};
+
+/* the fence: the keys that are not the thesis's protocol (config.h, ST_CONFIG_TIERS) */
+static const struct {
+  stConfigTier tier;
+  const char *section, *name; /* a key, or "prefix_*" */
+} g_tier_keys[] = {
+#define ST__TIER_ROW(t, s, k) {ST_TIER_##t, s, k},
+    ST_CONFIG_TIERS(ST__TIER_ROW)
+#undef ST__TIER_ROW
+};
+
+static int name_matches(const char *pattern, const char *name);
+
+stConfigTier st_config_key_tier(int i) {
+  ST_ASSERT(i >= 0 && i < NKEYS);
+  for (size_t r = 0; r < sizeof g_tier_keys / sizeof g_tier_keys[0]; r++)
+    if (!strcmp(g_tier_keys[r].section, g_keys[i].section) &&
+        name_matches(g_tier_keys[r].name, g_keys[i].name))
+      return g_tier_keys[r].tier;
+  return ST_TIER_PROTOCOL;
+}
+
+const char *st_config_tier_name(stConfigTier tier) {
+  return (int)tier >= 0 && tier < ST_TIER_COUNT ? g_tier_name[tier] : "?";
+}
+
 int st_config_nkeys(void) { return NKEYS; }
 const stConfigKey *st_config_key(int i) { return i >= 0 && i < NKEYS ? &g_keys[i] : NULL; }
 
@@ -931,32 +966,48 @@ static void format_value(const stConfig *cfg, const stConfigKey *k, char *buf, s
 int st_config_write(FILE *f, const stConfig *cfg) {
   ST_ASSERT(f && cfg);
   fprintf(f, "# libselftalk %s resolved configuration\n", ST_VERSION_STRING);
-  for (int i = 0; i < NKEYS; i++) {
-    const stConfigKey *k = &g_keys[i];
-    if (i == 0 || strcmp(k->section, g_keys[i - 1].section)) fprintf(f, "\n[%s]\n", k->section);
-    char v[ST_CONFIG_STR_MAX + 32];
-    format_value(cfg, k, v, sizeof v);
-    fprintf(f, "# %s\n%s = %s\n", k->help, k->name, v);
+  for (int first = 0; first < NKEYS;) {
+    int end = first; /* the section: keys first..end-1 */
+    while (end < NKEYS && !strcmp(g_keys[end].section, g_keys[first].section)) end++;
+    fprintf(f, "\n[%s]\n", g_keys[first].section);
+    for (int t = 0; t < ST_TIER_COUNT; t++) {
+      int said = 0;
+      for (int i = first; i < end; i++) {
+        const stConfigKey *k = &g_keys[i];
+        if (st_config_key_tier(i) != (stConfigTier)t) continue;
+        if (!said++) fprintf(f, "# ---- %s: %s ----\n", g_tier_name[t], g_tier_title[t]);
+        char v[ST_CONFIG_STR_MAX + 32];
+        format_value(cfg, k, v, sizeof v);
+        fprintf(f, "# %s\n%s = %s\n", k->help, k->name, v);
+      }
+    }
+    first = end;
   }
   return ferror(f) ? -1 : 0;
 }
 
+/* one key of the reference: name, type, default, range, readers; help */
+static void help_key(FILE *f, const stConfig *d, const stConfigKey *k) {
+  static const char *tn[] = {"int", "real", "bool", "enum", "string"};
+  char v[ST_CONFIG_STR_MAX + 32], exp[128];
+  format_value(d, k, v, sizeof v);
+  if (k->type == ST_CFG_REAL) short_real(*CFIELD(d, k, double), v, sizeof v);
+  expected(k, exp, sizeof exp);
+  const stageKey *r = stage_key(k);
+  const int some = r && r->stages != ST_CONFIG_ALL_STAGES;
+  char readers[160] = "";
+  if (some) readers_phrase(r->stages, readers, sizeof readers);
+  fprintf(f, "%s.%s (%s, default %s; %s)%s%s%s\n    %s\n", k->section, k->name, tn[k->type], v,
+          exp, some ? "; read by " : "", readers, some ? " only" : "", k->help);
+}
+
 void st_config_help(FILE *f) {
   ST_ASSERT(f);
-  static const char *tn[] = {"int", "real", "bool", "enum", "string"};
   stConfig d;
   st_config_default(&d);
-  for (int i = 0; i < NKEYS; i++) {
-    const stConfigKey *k = &g_keys[i];
-    char v[ST_CONFIG_STR_MAX + 32], exp[128];
-    format_value(&d, k, v, sizeof v);
-    if (k->type == ST_CFG_REAL) short_real(*CFIELD(&d, k, double), v, sizeof v);
-    expected(k, exp, sizeof exp);
-    const stageKey *r = stage_key(k);
-    const int some = r && r->stages != ST_CONFIG_ALL_STAGES;
-    char readers[160] = "";
-    if (some) readers_phrase(r->stages, readers, sizeof readers);
-    fprintf(f, "%s.%s (%s, default %s; %s)%s%s%s\n    %s\n", k->section, k->name, tn[k->type], v,
-            exp, some ? "; read by " : "", readers, some ? " only" : "", k->help);
+  for (int t = 0; t < ST_TIER_COUNT; t++) {
+    fprintf(f, "%s==== %s: %s ====\n", t ? "\n" : "", g_tier_name[t], g_tier_title[t]);
+    for (int i = 0; i < NKEYS; i++)
+      if (st_config_key_tier(i) == (stConfigTier)t) help_key(f, &d, &g_keys[i]);
   }
 }
