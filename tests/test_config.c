@@ -623,6 +623,14 @@ static void test_config_check_number(void) {
   CU_ASSERT_EQUAL(st_config_check_number("dynamics", "gravity", 101, err, sizeof err), ST_ERR_RANGE);
   ST_ASSERT_CONTAINS(err, "dynamics.gravity: 101 is out of range (expected a number in [0, 100])");
   CU_ASSERT_EQUAL(st_config_check_number("robot", "urdf", 1, err, sizeof err), ST_ERR_ARG);
+  /* a BOOL takes 0 and 1, an ENUM its choices' indices */
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "free_motion", 1, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "free_motion", 2, err, sizeof err), ST_ERR_RANGE);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 1, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 2, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "dynamics.lcp: 2 is out of range (expected one of dense|schur)");
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", -1, err, sizeof err), ST_ERR_RANGE);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 0.5, err, sizeof err), ST_ERR_RANGE);
   CU_ASSERT_EQUAL(st_config_check_number("ga", "nope", 1, err, sizeof err), ST_ERR_ARG);
 }
 

@@ -184,6 +184,12 @@ typedef enum stConfigTier {
   REAL(postures, vary_wrist_pitch, -45.0, -90.0, 0.0, "vary_starts: the IK start's wrist pitch is uniform between ik_wrist_pitch and this, deg") \
   BOOL(postures, vary_open_high, 0, "vary_starts: open's drawn starts at k=0,1 are built as k=2,3's (palm a few cm above the ball, hand almost closed): open earns its success everywhere (PROTOCOL.md)") \
   INT(postures, vary_draws, 20, 1, 1000, "vary_starts: draws per trial until one has the SPEC 8 properties; when none has, the trial starts from the fixed posture") \
+  ST_CONFIG_DYNAMICS_KEYS(INT, REAL, BOOL, ENUM, STR)                                             \
+  ST__CONFIG_POSTEVAL_KEYS(INT, REAL, BOOL, ENUM, STR)
+
+/* The [dynamics] keys, a block of the table of their own: the dynamic world's definition
+ * (stDynDef, selftalk/world.h) is generated from it, field by key. */
+#define ST_CONFIG_DYNAMICS_KEYS(INT, REAL, BOOL, ENUM, STR)                                      \
   ENUM(dynamics, solver, 1, "quickstep|step", "ODE stepper: quickstep (iterative; its constraint shuffling uses a per-thread generator seeded per trial) or step (direct, slower)") \
   REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \
   INT(dynamics, iterations, 20, 1, 1000, "quickstep solver iterations per sub-step") \
@@ -212,7 +218,9 @@ typedef enum stConfigTier {
   STR(dynamics, adaptive_joints, "", "the hinges after kinematic_joints, in chain order, that are exact servos while the torque they need stays within adaptive_limit of theirs, else motors (PROTOCOL, Speed); empty: none") \
   REAL(dynamics, adaptive_limit, 0.5, 0.01, 1.0, "adaptive_joints: an exact servo needing more than this times its motor's torque limit becomes a motor again, and a servo again below half of it") \
   ENUM(dynamics, lcp, 0, "dense|schur", "solver step: dense, ODE's Dantzig on the whole LCP; schur, the joints' unbounded rows eliminated first (sparse), ODE's on the rest: the same solution up to rounding (PROTOCOL, Speed)") \
-  /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */ \
+  /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */
+
+#define ST__CONFIG_POSTEVAL_KEYS(INT, REAL, BOOL, ENUM, STR)                                     \
   INT(posteval, integration_top, 10, 1, 100000, "integration test: genotypes taken from the top of each primitive run's population (thesis 2.10.1: the top 10)") \
   INT(posteval, integration_trials, 40, 1, 100000, "integration test: caretaker-guided trials per genotype; trial i has type k = i mod 4: reach posture k, object position k, target k mod 2, fresh offsets (thesis 2.10.1)") \
   INT(posteval, robustness_trials, 40, 1, 100000, "robustness test: autonomous trials per individual, types as the integration test's (thesis 2.10.2)") \
@@ -363,9 +371,9 @@ enum { ST_VARY_REPLACE = 0, ST_VARY_EXTRA };
 const char *st_config_enum_name(const char *section, const char *name, int value);
 
 /* Checks value against the range of the INT or REAL key section.name (the table is the one
- * place ranges live): ST_OK, or ST_ERR_RANGE with "section.name: V is out of range (expected
- * ...)". Code that builds its definitions without a stConfig (the GA, the dynamic world) checks
- * the fields that are keys with this. */
+ * place ranges live), or a BOOL's 0 and 1, or an ENUM's choice indices: ST_OK, or ST_ERR_RANGE
+ * with "section.name: V is out of range (expected ...)". Code that builds its definitions
+ * without a stConfig (the GA, the dynamic world) checks the fields that are keys with this. */
 stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
                                 size_t errsz);
 

@@ -610,16 +610,25 @@ stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz) {
   return ST_OK;
 }
 
+/* whether value is one key k takes: within an INT's or REAL's range, 0 or 1 for a BOOL (its
+ * range), the index of a choice for an ENUM */
+static int value_in_range(const stConfigKey *k, double value) {
+  char c[64];
+  if (k->type != ST_CFG_ENUM) return value >= k->min && value <= k->max;
+  return value >= 0.0 && value < 64.0 && value == (int)value &&
+         !choice_at(k->choices, (int)value, c, sizeof c);
+}
+
 stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
                                 size_t errsz) {
   ST_ASSERT(section && name);
   const int i = st_config_find(section, name);
   const stConfigKey *k = st_config_key(i);
-  if (!k || (k->type != ST_CFG_INT && k->type != ST_CFG_REAL)) {
+  if (!k || k->type == ST_CFG_STR) {
     st__errf(err, errsz, "%s.%s: not a numeric key of the key table", section, name);
     return ST_ERR_ARG;
   }
-  if (value >= k->min && value <= k->max) return ST_OK;
+  if (value_in_range(k, value)) return ST_OK;
   char exp[128];
   expected(k, exp, sizeof exp);
   st__errf(err, errsz, "%s.%s: %g is out of range (expected %s)", section, name, value, exp);
