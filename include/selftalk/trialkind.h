@@ -9,8 +9,10 @@
  * lib/episode/trialkind.c; the evaluation (selftalk/trial.h), fitness.csv
  * (selftalk/fitnesscsv.h), replay and the key checks go through the table.
  *
- * A new kind is its file and its line in ST_TRIAL_KINDS. Its row says everything above; the
- * hooks it leaves NULL take the defaults their comments give. */
+ * A new kind is its file and its line in ST_TRIAL_KINDS, appended: a kind's place gives its
+ * trial indices and its fitness.csv columns, so the kinds before it keep theirs (their random
+ * streams are keyed by their indices). Its row says everything above; the hooks it leaves NULL
+ * take the defaults their comments give. */
 #ifndef SELFTALK_TRIALKIND_H
 #define SELFTALK_TRIALKIND_H
 
