@@ -160,9 +160,6 @@ typedef struct stPrimScorer {
 stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
                         stTrialResult *r);
 
-/* The primitive scorer's scoring of a step (the default of stTrialKindDef.score). */
-int st__prim_score(stPrimScorer *s, stTraceStep *ts);
-
 /* Runs one trial: st_trial_episode, the primitive scorer (its kind's score hook), st_episode_run
  * with ctl (any controller: a network's, st_net_controller, with forced outputs or not; one
  * composed with a roll-in, st_rollin_controller; the scripted one), then its kind's finish hook

@@ -36,6 +36,9 @@ void st__fixed_trial(const stProtocol *p, stTrialSpec *t, int primitive, int k, 
  * common to every individual; none accepted: the fixed posture stays (start_draws 0) */
 void st__drawn_start(const stProtocol *p, stTrialSpec *t);
 
+/* the primitive scorer's scoring of a step (the default of stTrialKindDef.score) */
+int st__prim_score(stPrimScorer *s, stTraceStep *ts);
+
 /* a trial's episode and the primitive scorer, without its kind's finish hook */
 stStatus st__trial_episode_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                                const stController *ctl, uint64_t seed_key, stTrialResult *r,
