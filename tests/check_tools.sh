@@ -251,12 +251,13 @@ generated() { # NAME WHAT: tools/NAME.py against build/NAME's output
 generated csvschema "the library's tables"
 generated keytable "the library's key table (its tiers and defaults)"
 gen="${BUILD:-build}/csvschema"
-# its defaults read as config.ini writes them: a run at the defaults departs in nothing
+# its defaults read as config.ini writes them: a run of the shipped simple-prim config departs in
+# its --set keys and the shipped palm-down starts (an extension, SPEC 13) alone
 "${APPDIR:-apps}/evolve" configs/simple_prim.cfg --generations 1 --set ga.population=2 \
   --set ga.elites=1 --set ga.parents=1 --set ga.success_genotypes=1 --out "$t/kt" > /dev/null 2>&1
 if [ "$(python3 -c 'import sys; sys.path.insert(0, "tools"); import keytable
-print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")" = "[('protocol', 'ga.population', '2', '100'), ('protocol', 'ga.elites', '1', '10'), ('protocol', 'ga.parents', '1', '20'), ('protocol', 'ga.success_genotypes', '1', '5')]" ]; then
-  ok "keytable.departures: a run's config.ini away from the defaults in its --set keys alone"
+print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")" = "[('protocol', 'ga.population', '2', '100'), ('protocol', 'ga.elites', '1', '10'), ('protocol', 'ga.parents', '1', '20'), ('protocol', 'ga.success_genotypes', '1', '5'), ('extension', 'postures.reach_palm_down', 'true', 'false')]" ]; then
+  ok "keytable.departures: a run's config.ini away from the defaults in its --set keys and the shipped starts"
 else
   ko "keytable.departures" "$(python3 -c 'import sys; sys.path.insert(0, "tools"); import keytable
 print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")"

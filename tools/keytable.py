@@ -110,6 +110,7 @@ KEYS = {
     "integrated.first_generation": ("run", "str", "true"),
     "integrated.first_bonus_factor": ("protocol", "float", "10"),
     "integrated.trials": ("protocol", "int", "8"),
+    "integrated.trial_order": ("protocol", "str", "mod4"),
     "integrated.steps": ("protocol", "int", "240"),
     "integrated.hold_steps": ("protocol", "int", "20"),
     "integrated.focus_bonus_steps": ("protocol", "int", "3"),
