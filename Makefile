@@ -64,13 +64,14 @@ CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS
 # controller can link them alone), model (URDF, kinematics), world (kinematic and ODE
 # backends), task (postures, fitness, caretaker), episode (the one episode loop, its
 # controllers - the network's and the scripted one - its trials and the trace CSV), run
-# (evolution), posteval (the post-evaluation tests). Objects mirror the folders under
+# (evolution), posteval (the post-evaluation tests). A layer's folder may hold one level of
+# subfolders (lib/episode/trials/: a file per trial kind). Objects mirror the folders under
 # build/obj/. A file includes no header of a higher layer (tests/check_layers.sh).
 LAYERS := core model world task episode run posteval
 STRAY_SRC := $(filter-out $(LAYERS:%=lib/%/),$(sort $(dir $(wildcard lib/*.c lib/*.cpp lib/*/*.c lib/*/*.cpp))))
 $(if $(STRAY_SRC),$(error sources outside the layer folders ($(STRAY_SRC)): move them into one of lib/{$(LAYERS)}/ or add a layer to LAYERS))
 CORE_SRC := $(wildcard lib/core/*.c)
-SIM_SRC := $(foreach l,$(filter-out core,$(LAYERS)),$(wildcard lib/$(l)/*.c lib/$(l)/*.cpp))
+SIM_SRC := $(foreach l,$(filter-out core,$(LAYERS)),$(wildcard lib/$(l)/*.c lib/$(l)/*.cpp lib/$(l)/*/*.c))
 CORE_OBJ := $(CORE_SRC:lib/%.c=$(BUILD)/obj/%.o)
 SIM_OBJ := $(patsubst lib/%,$(BUILD)/obj/%.o,$(basename $(SIM_SRC)))
 
@@ -91,7 +92,7 @@ TOOLS := $(patsubst tools/%.c,$(BUILD)/%,$(wildcard tools/*.c))
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(BUILD)/run_tests
 
-HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h)
+HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h lib/*/*/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
   libassimp-dev libtinyxml-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind \

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "selftalk/io.h"
+#include "selftalk/trialkind.h"
 
 void app_die(const char *prog, const char *fmt, ...) {
   va_list ap;
@@ -57,12 +58,18 @@ int app_config_arg(appConfigArgs *a, int argc, char **argv, int *i, const char *
   return 0;
 }
 
+/* the file's keys and rules, the trial kinds' naming its line; then the --set options', once
+ * all are in */
 void app_config_resolve(const appConfigArgs *a, stConfig *cfg, const char *prog) {
   char err[1024];
   st_config_default(cfg);
-  if (a->config_path && st_config_load(a->config_path, cfg, err, sizeof err)) app_die(prog, "%s", err);
+  if (a->config_path && (st_config_load(a->config_path, cfg, err, sizeof err) ||
+                         st_trial_kinds_check(cfg, a->config_path, err, sizeof err)))
+    app_die(prog, "%s", err);
   if (st_config_set_all(cfg, (const char *const *)a->sets, a->nsets, err, sizeof err))
     app_die(prog, "%s", err);
+  if (a->nsets && st_trial_kinds_check(cfg, NULL, err, sizeof err))
+    app_die(prog, "after the --set options: %s", err);
 }
 
 char *app_read_text(const char *prog, const char *path, size_t *len) {

@@ -58,6 +58,7 @@
 #include "trial_page.h"
 #include "selftalk/integrated.h"
 #include "selftalk/posteval.h"
+#include "selftalk/trialkind.h"
 #include "selftalk/trace.h"
 #include "selftalk/trial.h"
 #include "selftalk/world.h"
@@ -243,8 +244,18 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
   char err[1024];
   const uint64_t key = st_trial_seed_key(p, generation, index, trial);
   const stTraceFn fn = trace->csv.f || trace->shapes || trace->page ? on_step : NULL;
-  if (st_trial_run_rollin(p, &ws, &t, np, rollin, force, nforce, key, &r, fn, trace, err, sizeof err))
-    app_die(prog, "%s", err);
+  /* the individual (its outputs forced), and with a roll-in the elite acting until the
+   * hand-over */
+  if (st_force_check(force, nforce, err, sizeof err)) app_die(prog, "%s", err);
+  stNetController nc, rc;
+  stRollinController roll;
+  stController ctl = st_net_controller(&nc, np, force, nforce);
+  if (rollin) {
+    const stController individual = ctl, elite = st_net_controller(&rc, rollin, NULL, 0);
+    if (st_rollin_controller(&roll, &elite, &individual, &ctl, err, sizeof err))
+      app_die(prog, "--rollin: %s", err);
+  }
+  if (st_trial_run(p, &ws, &t, &ctl, key, &r, fn, trace, err, sizeof err)) app_die(prog, "%s", err);
   st_workspace_free(&ws);
   long n_p = 0; /* the primitive's trials, hand-over trials included */
   for (int i = 0; i < st_stage_trials(p, stage); i++) {
@@ -252,7 +263,8 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
     st_trial_spec(p, stage, generation, i, &o);
     if (o.primitive == t.primitive) n_p += o.steps;
   }
-  if (t.handover)
+  const int handover = t.kind == ST_TRIAL_HANDOVER;
+  if (handover)
     fprintf(stderr, "replay: hand-over trial: %s\n",
             r.handover_step >= 0           ? "handed over at the step below"
             : p->cfg.stage_handover_fallback ? "no hand-over: the fixed-posture fallback ran (the "
@@ -260,7 +272,7 @@ static void replay_primitive(const stProtocol *p, stStage stage, int generation,
                                              : "no hand-over: the trial scores nothing");
   double share = (r.success ? p->fitness.bonus : 0.0) + p->fitness.scale / (double)n_p * (r.sum_s - r.sum_p);
   char ho[48] = "";
-  if (t.handover) snprintf(ho, sizeof ho, " handover_step=%d", r.handover_step);
+  if (handover) snprintf(ho, sizeof ho, " handover_step=%d", r.handover_step);
   snprintf(trace->line, sizeof trace->line, "trial %d %s %s k=%d success=%d steps=%ld/%d end=%s "
            "first_success_step=%d sum_S=%.6f sum_P=%.6f F_contribution=%.6f%s", trial,
            st_stage_name(stage), st_primitive_name(t.primitive), t.k, r.success, r.steps_run,
@@ -373,6 +385,23 @@ static int pick_index(const stGenomeSet *set, const char *genome, int generation
           generation, genome, set->generation[0], set->generation[set->count - 1]);
 }
 
+/* the trial indices a primitive config's stage has: "0..15, 16..27 (hand-over trials), ..." */
+static const char *trial_ranges(const stConfig *cfg, stStage stage) {
+  static char buf[256];
+  size_t m = 0;
+  for (int k = 0; k < ST_TRIAL_KIND_COUNT && m < sizeof buf; k++) {
+    const stTrialKindDef *d = st_trial_kind_def((stTrialKind)k);
+    if (!d->indexed || !st_trial_kind_count(cfg, stage, d->kind)) continue;
+    const int first = st_trial_kind_first(d->kind);
+    const int w = k == ST_TRIAL_FIXED
+                      ? snprintf(buf + m, sizeof buf - m, "%d..%d", first, first + d->max - 1)
+                      : snprintf(buf + m, sizeof buf - m, ", %d..%d (%s)", first,
+                                 first + d->max - 1, d->title);
+    m += w > 0 ? (size_t)w : 0;
+  }
+  return buf;
+}
+
 /* --rollin FILE: the elite that acts a hand-over trial's roll-in (see the header comment) */
 static void read_rollin(const stProtocol *p, const char *file, int index, int index_last,
                         int generation, stNetParams *rollin) {
@@ -469,24 +498,11 @@ int main(int argc, char **argv) {
     else if (!strcmp(stage_name, "main")) stage = ST_STAGE_MAIN;
     else app_die(prog, "--stage '%s': expected simple or main", stage_name);
   }
-  /* main-prim: its hand-over trials (stage.handover) and varied trials (postures.vary_trials =
-   * extra) after the 16 (st_trial_kind) */
-  const int handover = stage == ST_STAGE_MAIN && cfg.stage_handover;
-  const int varied = st_stage_varied(&cfg, stage);
+  /* main-prim: the indexed kinds' trials after the 16 (selftalk/trialkind.h), where the config
+   * has them */
   const int kind = trial >= 0 && trial < ST_MAIN_TRIALS_MAX ? (int)st_trial_kind(trial) : -1;
-  if (post < 0 && !integrated &&
-      !(kind == ST_TRIAL_FIXED || (kind == ST_TRIAL_HANDOVER && handover) ||
-        (kind == ST_TRIAL_VARIED && varied))) {
-    char more[128] = "";
-    int m = 0;
-    if (handover)
-      m += snprintf(more, sizeof more, ", %d..%d (hand-over trials)", ST_PRIM_TRIALS,
-                    ST_VARIED_FIRST - 1);
-    if (varied)
-      snprintf(more + m, sizeof more - (size_t)m, ", %d..%d (varied trials)", ST_VARIED_FIRST,
-               ST_MAIN_TRIALS_MAX - 1);
-    app_die(prog, "--trial %d: expected 0..%d%s", trial, ST_PRIM_TRIALS - 1, more);
-  }
+  if (post < 0 && !integrated && (kind < 0 || !st_trial_kind_count(&cfg, stage, (stTrialKind)kind)))
+    app_die(prog, "--trial %d: expected %s", trial, trial_ranges(&cfg, stage));
   /* network.arch: an integrated-stage genotype (type A or B) replays primitive trials too */
   const stNetArch arch = (stNetArch)cfg.network_arch;
   char err[1024];
@@ -497,11 +513,11 @@ int main(int argc, char **argv) {
   if (index >= set.count) app_die(prog, "--index %d: %s has %d genotypes", index, genome, set.count);
   if (index < 0) index = pick_index(&set, genome, generation);
   if (generation < 0) generation = set.generation[index] >= 0 ? set.generation[index] : 0;
-  if (post < 0 && !integrated && kind == ST_TRIAL_VARIED && st_vary_replacing(&cfg, generation))
-    app_die(prog, "--trial %d: generation %d runs no varied trials (its open and grasp trials start "
-            "from the drawn postures instead: postures.vary_replace_generations = %d); expected "
-            "--generation %d or later", trial, generation, cfg.postures_vary_replace_generations,
-            cfg.postures_vary_replace_generations);
+  if (post < 0 && !integrated && !st_trial_kind_runs(&cfg, stage, generation, (stTrialKind)kind))
+    app_die(prog, "--trial %d: generation %d runs no %s (its open and grasp trials start from the "
+            "drawn postures instead: postures.vary_replace_generations = %d); expected "
+            "--generation %d or later", trial, generation, st_trial_kind_def((stTrialKind)kind)->title,
+            cfg.postures_vary_replace_generations, cfg.postures_vary_replace_generations);
   fprintf(stderr, "replay: genotype %d of %s, trial offsets of generation %d\n", index, genome,
           generation);
   stProtocol *p = NULL;
@@ -516,8 +532,9 @@ int main(int argc, char **argv) {
             "genotype 0)", ca.config_path);
   if (!elite_rollin && (rollin_file || rollin_index >= 0 || rollin_last))
     app_die(prog, "--rollin names who rolls a hand-over trial in under stage.handover_rollin = "
-            "elite: give a main-prim hand-over trial (%d..%d) of such a config", ST_PRIM_TRIALS,
-            ST_VARIED_FIRST - 1);
+            "elite: give a main-prim hand-over trial (%d..%d) of such a config",
+            st_trial_kind_first(ST_TRIAL_HANDOVER),
+            st_trial_kind_first(ST_TRIAL_HANDOVER) + ST_TRIAL_MAX_HANDOVER - 1);
   stNetParams np;
   if (st_net_decode(&p->net, arch, &set.genome[index], &np, err, sizeof err)) app_die(prog, "%s", err);
   st_genome_set_free(&set);

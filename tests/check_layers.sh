@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The layers of lib/ (the Makefile's LAYERS, lowest first: core model world task episode run
-# posteval): no file of lib/ and no public header includes a header of a higher layer. A
-# header's layer is the folder of the lib/ source that implements it (selftalk/trial.h:
+# posteval): no file of lib/ (nor of a layer's subfolders, lib/episode/trials/) and no public
+# header includes a header of a higher layer. A header's layer is the folder of the lib/
+# source that implements it (selftalk/trial.h:
 # lib/episode/trial.c; selftalk/io.h: core; lib/LAYER/x.h: LAYER); selftalk/selftalk.h, which
 # includes them all, is above every layer. Then the check itself is tried on a copy with one
 # upward include added: it must find it.
@@ -48,10 +49,10 @@ upward() { # ROOT
         echo "$f:$line: includes $inc (layer ${LAYERS[$r]:-selftalk.h} above ${LAYERS[$own]})"
       fi
     done < <(grep -n '^[[:space:]]*#[[:space:]]*include[[:space:]]*"' "$root/$f")
-  done < <(cd "$root" && ls lib/*/*.c lib/*/*.cpp lib/*/*.h include/selftalk/*.h 2>/dev/null)
+  done < <(cd "$root" && ls lib/*/*.c lib/*/*.cpp lib/*/*.h lib/*/*/*.c lib/*/*/*.h include/selftalk/*.h 2>/dev/null)
 }
 
-nfiles=$(ls lib/*/*.c lib/*/*.cpp lib/*/*.h include/selftalk/*.h | wc -l)
+nfiles=$(ls lib/*/*.c lib/*/*.cpp lib/*/*.h lib/*/*/*.c lib/*/*/*.h include/selftalk/*.h 2>/dev/null | wc -l)
 if [ "${#LAYERS[@]}" -lt 2 ]; then
   ko "the layers" "no LAYERS line in the Makefile"
 elif out=$(upward .) && [ -z "$out" ]; then

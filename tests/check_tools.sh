@@ -96,6 +96,27 @@ out=$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)
 grep -qF "simple-prim: not complete after 3 generations (at most 5 of the 9 genotypes needed" <<<"$out" &&
   grep -qF "main-prim: complete at generation 6 (9 genotypes" <<<"$out" &&
   ok "run_report: the threshold of config.ini" || ko "run_report threshold: $out"
+# and how the run departs from the thesis's protocol, tier by tier (tools/keytable.py): the
+# threshold is the protocol's; a seed is the run's own, not a departure; free motion is speed
+printf '[run]
+seed = 4
+threads = 2
+[ga]
+success_genotypes = 9
+[stage]
+handover = true
+' > "$t/a/config.ini"
+out=$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)
+grep -qxF "  how it departs from the thesis's protocol (config.ini, each key's default after it):" <<<"$out" &&
+  grep -qxF "    protocol: ga.success_genotypes = 9 (5)" <<<"$out" &&
+  grep -qxF "    extension: stage.handover = true (false)" <<<"$out" &&
+  grep -qxF "    speed (the same results): run.threads = 2 (0)" <<<"$out" && ! grep -q "run.seed" <<<"$out" &&
+  ok "run_report: the keys away from the thesis's protocol, by tier" || ko "run_report departures: $out"
+printf '[run]
+seed = 4
+' > "$t/a/config.ini"
+grep -qxF "  the thesis's protocol: no key away from it (config.ini)" <<<"$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)" &&
+  ok "run_report: a run of the thesis's protocol says so" || ko "run_report no departure"
 # grasp_probe --trace: a hand held 5 cm above the ball that never closes leaves it alone, so once
 # the table collision goes off after step 39 the ball free-falls by ODE's semi-implicit Euler,
 # g h^2 n (n + 1) / 2 after n sub-steps of h = 0.01 s: 0.01471 m after step 40 (n = 5), 0.05396 m
@@ -215,29 +236,49 @@ print(got, err)
 sys.exit(0 if got == [3, 5, 100] and err == sys.argv[1] + "/config.ini:7: fitness.bonus 'x' (expected a number)" else 1)
 PY
 ); then ok "runconfig: a key of a run's config.ini ($out)"; else ko "runconfig" "$out"; fi
-# ---- tools/csvschema.py: the library's column tables as the tools take them
-# generated from the C tables: the committed file is what tools/csvschema.c prints
+# ---- tools/csvschema.py and tools/keytable.py: the library's column tables and key table as
+# the tools take them, generated from the C tables: each committed file is what its tools/*.c
+# prints
+generated() { # NAME WHAT: tools/NAME.py against build/NAME's output
+  local gen="${BUILD:-build}/$1"
+  if "$gen" > "$t/$1.py" && cmp -s "$t/$1.py" "tools/$1.py"; then
+    ok "tools/$1.py is what $2 give ($gen)"
+  else
+    ko "tools/$1.py differs from $2: regenerate it with $gen > tools/$1.py" \
+      "$(diff "$t/$1.py" "tools/$1.py" | head -20)"
+  fi
+}
+generated csvschema "the library's tables"
+generated keytable "the library's key table (its tiers and defaults)"
 gen="${BUILD:-build}/csvschema"
-if "$gen" > "$t/csvschema.py" && cmp -s "$t/csvschema.py" tools/csvschema.py; then
-  ok "tools/csvschema.py is what the library's tables give ($gen)"
+# its defaults read as config.ini writes them: a run of the shipped simple-prim config departs in
+# its --set keys and the shipped palm-down starts (an extension, SPEC 13) alone
+"${APPDIR:-apps}/evolve" configs/simple_prim.cfg --generations 1 --set ga.population=2 \
+  --set ga.elites=1 --set ga.parents=1 --set ga.success_genotypes=1 --out "$t/kt" > /dev/null 2>&1
+if [ "$(python3 -c 'import sys; sys.path.insert(0, "tools"); import keytable
+print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")" = "[('protocol', 'ga.population', '2', '100'), ('protocol', 'ga.elites', '1', '10'), ('protocol', 'ga.parents', '1', '20'), ('protocol', 'ga.success_genotypes', '1', '5'), ('extension', 'postures.reach_palm_down', 'true', 'false')]" ]; then
+  ok "keytable.departures: a run's config.ini away from the defaults in its --set keys and the shipped starts"
 else
-  ko "tools/csvschema.py differs from the library's tables: regenerate it with $gen > tools/csvschema.py" \
-    "$(diff "$t/csvschema.py" tools/csvschema.py | head -20)"
+  ko "keytable.departures" "$(python3 -c 'import sys; sys.path.insert(0, "tools"); import keytable
+print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")"
 fi
 # its fitness.csv layouts are the library's (st_fitness_csv), primitive and integrated, with and
-# without hand-over, chained and varied trials
+# without each kind of trials (none, one, the most of it)
 if out=$(python3 - "$gen" <<'PY'
-import subprocess, sys
+import itertools, subprocess, sys
 sys.path.insert(0, "tools")
 import csvschema
 bad = []
-layouts = [(i, t, h, c, v) for i in (0, 1) for t in (0, 1, 8, 16, 32) for h in (0, 1) for c in (0, 1, 8)
-           for v in (0, 1)]
-for i, t, h, c, v in layouts:
-    lib = subprocess.run([sys.argv[1], "--fitness-header", str(i), str(t), str(h), str(c), str(v)],
+others = [k for k in csvschema.TRIAL_KINDS if k != "fixed"]
+counts = [sorted({0, 1, m}) for m in (csvschema.TRIAL_KINDS[k] for k in others)]
+layouts = [(i, t, dict(zip(others, c))) for i in (0, 1) for t in (0, 1, 8, 16)
+           for c in itertools.product(*counts)]
+for i, t, kinds in layouts:
+    arg = ["%s=%d" % kv for kv in kinds.items()]
+    lib = subprocess.run([sys.argv[1], "--fitness-header", str(i), str(t)] + arg,
                          capture_output=True, text=True, check=True).stdout.rstrip("\n").split(",")
-    if csvschema.fitness_columns(i, t, h, c, v) != lib:
-        bad.append("%s" % ((i, t, h, c, v),))
+    if csvschema.fitness_columns(i, t, kinds) != lib:
+        bad.append("%s" % ((i, t, kinds),))
 print("%d layouts" % len(layouts), *bad)
 sys.exit(1 if bad else 0)
 PY

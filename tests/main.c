@@ -103,6 +103,22 @@ const stTestFixture *st_test_fixture(void) {
   return &g_fixture;
 }
 
+stStatus st_test_net_trial(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                           const stNetParams *net, const stNetParams *rollin, const stForce *force,
+                           int nforce, uint64_t key, stTrialResult *r, stTraceFn trace, void *ctx,
+                           char *err, size_t errsz) {
+  stStatus st = st_force_check(force, nforce, err, errsz);
+  if (st) return st;
+  stNetController nc, rc;
+  stRollinController roll;
+  stController ctl = st_net_controller(&nc, net, force, nforce);
+  if (rollin) {
+    const stController individual = ctl, elite = st_net_controller(&rc, rollin, NULL, 0);
+    if ((st = st_rollin_controller(&roll, &elite, &individual, &ctl, err, errsz))) return st;
+  }
+  return st_trial_run(p, ws, t, &ctl, key, r, trace, ctx, err, errsz);
+}
+
 int main(int argc, char **argv) {
   if (CU_initialize_registry() != CUE_SUCCESS) return 1;
   const char *filter = argc > 1 ? argv[1] : NULL;

@@ -132,79 +132,8 @@ static void test_config_errors(void) {
   expect_error("[ga]\nelites = 30\n\npopulation = 20\n", ST_ERR_RANGE,
                ":2: key 'ga.elites': 30 exceeds ga.population = 20 (expected elites <= population)");
   expect_error("[ga]\nelites = \n", ST_ERR_PARSE, ":2: key 'ga.elites': '' is not an integer");
-  /* a postures.vary_* key without the drawn starts would do nothing */
-  expect_error("[postures]\nvary_draws = 5\n\nvary_tilt = 10\n", ST_ERR_RANGE,
-               ":4: key 'postures.vary_tilt': it shapes the drawn starts, which "
-               "postures.vary_starts = false turns off (expected postures.vary_starts = true, or "
-               "the key left out)");
-  expect_error("[postures]\nvary_open_high = true\n", ST_ERR_RANGE,
-               ":2: key 'postures.vary_open_high': it shapes the drawn starts");
-  {
-    char path[256], e[1024];
-    st_test_write_tmp(path, sizeof path, ".cfg", "[postures]\nvary_tilt = 10\nvary_starts = true\n");
-    stConfig v;
-    st_config_default(&v);
-    CU_ASSERT_EQUAL(st_config_load(path, &v, e, sizeof e), ST_OK);
-    CU_ASSERT(v.postures_vary_starts == 1 && v.postures_vary_tilt == 10.0);
-  }
-  /* the completion rule of chained trials needs them */
-  expect_error("[stage]\nchain_complete = fixed_chained\n", ST_ERR_RANGE,
-               ":2: key 'stage.chain_complete': it shapes the chained trials, which "
-               "stage.chain_trials = 0 turns off");
-  /* the varied trials are main-prim's: refused without the drawn starts, or in simple-prim */
-  expect_error("[postures]\nvary_trials = extra\n", ST_ERR_RANGE,
-               ":2: key 'postures.vary_trials': it shapes the drawn starts, which "
-               "postures.vary_starts = false turns off (expected postures.vary_starts = true, or "
-               "the key left out)");
-  expect_error("[postures]\nvary_starts = true\nvary_trials = extra\n", ST_ERR_RANGE,
-               ":3: key 'postures.vary_trials': extra adds main-prim trials, and stage.stages = "
-               "simple_prim runs another stage (expected stage.stages = main_prim, or "
-               "postures.vary_trials = replace)");
-  expect_error("[stage]\nstages = prims\n[postures]\nvary_starts = true\nvary_trials = extra\n",
-               ST_ERR_RANGE, ":5: key 'postures.vary_trials': extra adds main-prim trials, and "
-               "stage.stages = prims runs another stage (expected stage.stages = main_prim, or "
-               "postures.vary_trials = replace)");
-  /* replace before extra: refused without the drawn starts, and with replace throughout */
-  expect_error("[postures]\nvary_replace_generations = 40\n", ST_ERR_RANGE,
-               ":2: key 'postures.vary_replace_generations': it shapes the drawn starts, which "
-               "postures.vary_starts = false turns off");
-  expect_error("[stage]\nstages = main_prim\n[postures]\nvary_starts = true\n"
-               "vary_replace_generations = 40\n", ST_ERR_RANGE,
-               ":5: key 'postures.vary_replace_generations': 40 generations of replace before "
-               "extra, and postures.vary_trials = replace replaces throughout (expected "
-               "postures.vary_trials = extra, or the key left out)");
-  /* keys that would act on nothing: a schedule that never reaches extra, hand-over trials or
-   * drawn starts of primitives stage.primitives leaves out, a stop rule that cannot fire */
-  expect_error("[ga]\nmax_generations = 40\n[stage]\nstages = main_prim\n[postures]\n"
-               "vary_starts = true\nvary_trials = extra\nvary_replace_generations = 40\n",
-               ST_ERR_RANGE, ":8: key 'postures.vary_replace_generations': 40 generations of "
-               "replace, and ga.max_generations = 40 ends the run before the first of extra "
-               "(expected fewer than ga.max_generations)");
-  expect_error("[stage]\nstages = main_prim\nprimitives = reach\nhandover = true\n",
-               ST_ERR_RANGE, ":4: key 'stage.handover': the hand-over trials are open's, grasp's "
-               "and move's, and stage.primitives = reach evaluates none of them");
-  expect_error("[stage]\nstages = main_prim\nprimitives = reach,move\n[postures]\n"
-               "vary_starts = true\n", ST_ERR_RANGE, ":5: key 'postures.vary_starts': the drawn "
-               "starts are open's and grasp's, and stage.primitives = reach,move evaluates neither");
-  expect_error("[stage]\nstages = main_prim\nchain_trials = 8\nchain_complete = fixed_chained\n"
-               "[postures]\nvary_starts = true\n", ST_ERR_RANGE,
-               ":4: key 'stage.chain_complete': fixed_chained completes a genotype only when it "
-               "solves the 16 from their fixed starts, and postures.vary_trials = replace draws");
-  {
-    /* the nearest accepted: one generation of extra; move's hand-over trials alone; grasp's
-     * drawn starts alone; fixed_chained with extra */
-    stConfig v;
-    char e[512] = "";
-    st_config_default(&v);
-    const char *const set[] = {"ga.max_generations=41", "stage.stages=main_prim",
-                               "stage.primitives=grasp,move", "stage.handover=true",
-                               "stage.chain_trials=8", "stage.chain_complete=fixed_chained",
-                               "postures.vary_starts=true", "postures.vary_trials=extra",
-                               "postures.vary_replace_generations=40"};
-    CU_ASSERT_EQUAL(st_config_set_all(&v, set, (int)(sizeof set / sizeof set[0]), e, sizeof e),
-                    ST_OK);
-    if (e[0]) fprintf(stderr, "%s\n", e);
-  }
+  /* the trial kinds' rules (postures.vary_*, stage.handover*, stage.chain_*) are their rows',
+   * checked after loading: tests/test_trialkind.c */
   expect_error("[stage]\nprimitives = reach,grasp,lift\n", ST_ERR_RANGE,
                ":2: key 'stage.primitives': 'reach,grasp,lift' is not a list of primitives "
                "(expected a comma-separated subset of reach,open,grasp,move)");
@@ -501,6 +430,18 @@ static void test_config_stage_keys(void) {
   CU_ASSERT_EQUAL(st_config_check_stages(&c, S, err, sizeof err), ST_OK);
 }
 
+/* what st_config_write writes of c, or without c st_config_help's reference, into *buf (free
+ * it) */
+static void written(const stConfig *c, char **buf) {
+  size_t len = 0;
+  *buf = NULL;
+  FILE *f = open_memstream(buf, &len);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(f);
+  if (c) st_config_write(f, c);
+  else st_config_help(f);
+  fclose(f);
+}
+
 /* the post-evaluation tests are readers like the stages: their [posteval] keys are refused by
  * evolution runs and by the other tests, a key no test reads is refused by a test with the
  * post-evaluations' reason, and st_config_check_changes judges the --set options against the
@@ -584,12 +525,8 @@ static void test_config_posteval_keys(void) {
   /* the run's stages and a test together */
   CU_ASSERT_EQUAL(st_config_check_stages(&file, ST_CONFIG_INTEGRATED | PR, err, sizeof err), ST_OK);
   /* the key reference names the readers */
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = open_memstream(&buf, &len);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(f);
-  st_config_help(f);
-  fclose(f);
+  char *buf;
+  written(NULL, &buf);
   ST_ASSERT_CONTAINS(buf, "posteval.generalisation_cells (int, default 7; an integer in [1, 1000]); "
                           "read by the generalisation test only");
   ST_ASSERT_CONTAINS(buf, "caretaker.first_step (int, default 1; an integer in [0, 100000]); read by "
@@ -598,6 +535,82 @@ static void test_config_posteval_keys(void) {
                           "the simple-prim stage only");
   CU_ASSERT_PTR_NULL(strstr(buf, "fitness.reach_height (real, default 0.095; a number in [0, 1]); read"));
   free(buf);
+}
+
+/* every key has a tier; --help-config lists them tier by tier, each key once under its tier's
+ * heading; config.ini groups each section's keys by tier under a comment, and reads back */
+static void test_config_tiers(void) {
+  int per[ST_TIER_COUNT] = {0};
+  for (int i = 0; i < st_config_nkeys(); i++) {
+    const stConfigKey *k = st_config_key(i);
+    (void)k;
+    const stConfigTier t = st_config_key_tier(i);
+    CU_ASSERT_FATAL((int)t >= 0 && t < ST_TIER_COUNT);
+    per[t]++;
+  }
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("run", "seed")), ST_TIER_RUN);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("run", "threads")), ST_TIER_SPEED);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("stage", "primitives")), ST_TIER_DIAGNOSTIC);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("stage", "handover_rollin")), ST_TIER_EXTENSION);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("postures", "vary_draws")), ST_TIER_EXTENSION);
+  CU_ASSERT_EQUAL(st_config_key_tier(st_config_find("fitness", "bonus")), ST_TIER_PROTOCOL);
+  /* each entry of the fence names keys of the table */
+  static const struct {
+    const char *section, *name;
+  } fence[] = {
+#define ROW(t, s, k) {s, k},
+      ST_CONFIG_TIERS(ROW)
+#undef ROW
+  };
+  for (size_t r = 0; r < sizeof fence / sizeof fence[0]; r++) {
+    const size_t n = strlen(fence[r].name);
+    const int prefix = fence[r].name[n - 1] == '*';
+    int hits = 0;
+    for (int i = 0; i < st_config_nkeys(); i++) {
+      const stConfigKey *k = st_config_key(i);
+      hits += !strcmp(k->section, fence[r].section) &&
+              (prefix ? !strncmp(k->name, fence[r].name, n - 1) : !strcmp(k->name, fence[r].name));
+    }
+    if (!hits) fprintf(stderr, "\n  fence entry %s.%s names no key\n", fence[r].section, fence[r].name);
+    CU_ASSERT(hits > 0);
+  }
+  CU_ASSERT_STRING_EQUAL(st_config_tier_name(ST_TIER_EXTENSION), "extension");
+  CU_ASSERT_STRING_EQUAL(st_config_tier_name(ST_TIER_COUNT), "?");
+  char *buf, *ini;
+  written(NULL, &buf);
+  const char *at = buf;
+  for (int t = 0; t < ST_TIER_COUNT; t++) {
+    char head[64];
+    snprintf(head, sizeof head, "==== %s: ", st_config_tier_name((stConfigTier)t));
+    const char *h = strstr(buf, head);
+    CU_ASSERT_FATAL(h != NULL && h >= at);
+    at = h;
+    /* its keys before the next heading */
+    const char *next = strstr(h + 1, "\n==== ");
+    int n = 0;
+    for (int i = 0; i < st_config_nkeys(); i++) {
+      const stConfigKey *k = st_config_key(i);
+      char name[160];
+      snprintf(name, sizeof name, "\n%s.%s (", k->section, k->name);
+      const char *p = strstr(h, name);
+      if (st_config_key_tier(i) == (stConfigTier)t) CU_ASSERT(p != NULL && (!next || p < next));
+      n += p != NULL && (!next || p < next);
+    }
+    CU_ASSERT_EQUAL(n, per[t]);
+  }
+  free(buf);
+  stConfig c;
+  st_config_default(&c);
+  c.stage_handover = 1;
+  written(&c, &ini);
+  const char *stage = strstr(ini, "\n[stage]\n");
+  CU_ASSERT_PTR_NOT_NULL_FATAL(stage);
+  const char *proto = strstr(stage, "# ---- protocol: "), *run = strstr(stage, "# ---- run: ");
+  const char *ext = strstr(stage, "# ---- extension: "), *diag = strstr(stage, "# ---- diagnostic: ");
+  const char *ho = strstr(stage, "\nhandover = true\n"), *steps = strstr(stage, "\nsimple_steps = 60\n");
+  CU_ASSERT(proto && run && ext && diag && ho && steps);
+  CU_ASSERT(proto < steps && steps < run && run < ext && ext < ho && ho < diag);
+  free(ini);
 }
 
 /* ranges live in the key table: code that builds its definitions checks them there */
@@ -610,6 +623,14 @@ static void test_config_check_number(void) {
   CU_ASSERT_EQUAL(st_config_check_number("dynamics", "gravity", 101, err, sizeof err), ST_ERR_RANGE);
   ST_ASSERT_CONTAINS(err, "dynamics.gravity: 101 is out of range (expected a number in [0, 100])");
   CU_ASSERT_EQUAL(st_config_check_number("robot", "urdf", 1, err, sizeof err), ST_ERR_ARG);
+  /* a BOOL takes 0 and 1, an ENUM its choices' indices */
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "free_motion", 1, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "free_motion", 2, err, sizeof err), ST_ERR_RANGE);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 1, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 2, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "dynamics.lcp: 2 is out of range (expected one of dense|schur)");
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", -1, err, sizeof err), ST_ERR_RANGE);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 0.5, err, sizeof err), ST_ERR_RANGE);
   CU_ASSERT_EQUAL(st_config_check_number("ga", "nope", 1, err, sizeof err), ST_ERR_ARG);
 }
 
@@ -626,4 +647,5 @@ void st_suite_config(void) {
   ST_ADD_TEST(test_config_stage_keys);
   ST_ADD_TEST(test_config_posteval_keys);
   ST_ADD_TEST(test_config_check_number);
+  ST_ADD_TEST(test_config_tiers);
 }

@@ -157,20 +157,37 @@ static void first_line(const char *path, char *buf, size_t n) {
   fclose(f);
 }
 
-/* every layout's header as evolve wrote it in the committed runs. With test_fitness_csv_rows, a
- * pin of the format (as tests/golden/golden.sha256 of evolve's output): a column added to the
- * table changes them, on purpose */
+/* a layout: the integrated stage's with `trials` trials, or the primitive stages' with the 16
+ * fixed trials and the other kinds' counts */
+static stFitnessLayout layout(int integrated, int trials, int handover, int chained, int varied) {
+  stFitnessLayout l;
+  memset(&l, 0, sizeof l);
+  l.integrated = integrated;
+  l.trials = integrated ? trials : 0;
+  l.kind_trials[ST_TRIAL_FIXED] = integrated ? 0 : trials;
+  l.kind_trials[ST_TRIAL_HANDOVER] = handover;
+  l.kind_trials[ST_TRIAL_CHAINED] = chained;
+  l.kind_trials[ST_TRIAL_VARIED] = varied;
+  return l;
+}
+
+/* every layout's header as evolve wrote it in the committed runs, the primitive stages' trials
+ * from the kinds' rows (selftalk/trialkind.h). With test_fitness_csv_rows, a pin of the format
+ * (as tests/golden/golden.sha256 of evolve's output): a column added to the table or a kind
+ * changes them, on purpose */
 static void test_fitness_csv_layouts(void) {
-  static const struct {
+  const int H = ST_TRIAL_MAX_HANDOVER, V = ST_TRIAL_MAX_VARIED;
+  const struct {
     stFitnessLayout l;
     const char *run;
   } cases[] = {
-      {{0, ST_PRIM_TRIALS, 0, 0, 0}, "data/evolved/prims_s2/fitness.csv"},
-      {{1, 8, 0, 0, 0}, "data/evolved/unchained/int_stct_s1/fitness.csv"},
-      {{0, ST_PRIM_TRIALS, 0, 8, 0}, "data/evolved/chain_candidates/chain_gated_p2_s1/fitness.csv"},
-      {{0, ST_PRIM_TRIALS, 1, 0, 0}, "data/evolved/chain_candidates/handover_p2_s1/fitness.csv"},
-      {{0, ST_PRIM_TRIALS, 1, 8, 0}, "data/evolved/chain_candidates/hcg_p2_s1/fitness.csv"},
-      {{1, 8, 1, 8, 0}, "data/evolved/unchained/int_ct_s1/fitness.csv"}, /* integrated: no main-prim parts */
+      {layout(0, ST_PRIM_TRIALS, 0, 0, 0), "data/evolved/prims_s2/fitness.csv"},
+      {layout(1, 8, 0, 0, 0), "data/evolved/unchained/int_stct_s1/fitness.csv"},
+      {layout(0, ST_PRIM_TRIALS, 0, 8, 0), "data/evolved/chain_candidates/chain_gated_p2_s1/fitness.csv"},
+      {layout(0, ST_PRIM_TRIALS, H, 0, 0), "data/evolved/chain_candidates/handover_p2_s1/fitness.csv"},
+      {layout(0, ST_PRIM_TRIALS, H, 8, 0), "data/evolved/chain_candidates/hcg_p2_s1/fitness.csv"},
+      {layout(0, ST_PRIM_TRIALS, H, 8, V), "data/evolved/chain_s1/fitness.csv"}, /* every kind */
+      {layout(1, 8, H, 8, V), "data/evolved/unchained/int_ct_s1/fitness.csv"}, /* integrated: no kinds */
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     stFitnessCsv c;
@@ -196,41 +213,70 @@ static void test_fitness_csv_rows(void) {
   for (int t = 0; t < 8; t++) k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.success[t]);
   snprintf(want + k, sizeof want - (size_t)k, "\n");
   stFitnessCsv c;
-  const stFitnessLayout integrated = {1, 8, 0, 0, 0};
+  const stFitnessLayout integrated = layout(1, 8, 0, 0, 0);
   st_fitness_csv(&integrated, &c);
   st_csv_row_text(&c.schema, &w, got, sizeof got);
   CU_ASSERT_STRING_EQUAL(got, want);
   /* a main-prim row with hand-over and chained trials */
+  stKindEvaluation *fixed = &w.kind[ST_TRIAL_FIXED], *ho = &w.kind[ST_TRIAL_HANDOVER];
+  stKindEvaluation *chained = &w.kind[ST_TRIAL_CHAINED], *varied = &w.kind[ST_TRIAL_VARIED];
   snprintf(w.stage, sizeof w.stage, "main-prim");
-  w.stage_generation = 4, w.all_success = 2, w.handovers = 3, w.f_chain = 12.5;
+  w.stage_generation = 4, w.all_success = 2, ho->count = 3, chained->fitness = 12.5;
   for (int p = 0; p < ST_NPRIM; p++) w.f_prim[p] = 0.1 * (p + 1);
-  for (int t = 0; t < ST_PRIM_TRIALS; t++) w.success[t] = t % 2;
-  w.handover_success[1] = w.chain_success[2] = 1;
+  for (int t = 0; t < ST_PRIM_TRIALS; t++) fixed->success[t] = t % 2;
+  ho->success[1] = chained->success[2] = 1;
   k = snprintf(want, sizeof want, "%d,%.17g,%.17g,%.17g,%.17g,%s,%d,%d,%d,%.17g,%.17g,%.17g,%.17g",
                w.generation, w.best, w.mean, w.worst, w.bonus, w.stage, w.stage_generation,
                w.all_success, w.successes, w.f_prim[0], w.f_prim[1], w.f_prim[2], w.f_prim[3]);
-  for (int t = 0; t < ST_PRIM_TRIALS; t++) k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.success[t]);
-  k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.handovers);
-  for (int t = 0; t < ST_HANDOVER_TRIALS; t++)
-    k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.handover_success[t]);
-  k += snprintf(want + k, sizeof want - (size_t)k, ",%.17g", w.f_chain);
-  for (int t = 0; t < 3; t++) k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.chain_success[t]);
+  for (int t = 0; t < ST_PRIM_TRIALS; t++) k += snprintf(want + k, sizeof want - (size_t)k, ",%d", fixed->success[t]);
+  k += snprintf(want + k, sizeof want - (size_t)k, ",%d", ho->count);
+  for (int t = 0; t < ST_TRIAL_MAX_HANDOVER; t++)
+    k += snprintf(want + k, sizeof want - (size_t)k, ",%d", ho->success[t]);
+  k += snprintf(want + k, sizeof want - (size_t)k, ",%.17g", chained->fitness);
+  for (int t = 0; t < 3; t++) k += snprintf(want + k, sizeof want - (size_t)k, ",%d", chained->success[t]);
   snprintf(want + k, sizeof want - (size_t)k, "\n");
-  const stFitnessLayout main_prim = {0, ST_PRIM_TRIALS, 1, 3, 0};
+  const stFitnessLayout main_prim = layout(0, ST_PRIM_TRIALS, ST_TRIAL_MAX_HANDOVER, 3, 0);
   st_fitness_csv(&main_prim, &c);
   st_csv_row_text(&c.schema, &w, got, sizeof got);
   CU_ASSERT_STRING_EQUAL(got, want);
   /* and with its varied trials: best_v0..7 last */
-  w.varied_success[0] = w.varied_success[6] = 1;
+  varied->success[0] = varied->success[6] = 1;
   k = (int)strlen(want) - 1;
-  for (int t = 0; t < ST_VARIED_TRIALS; t++)
-    k += snprintf(want + k, sizeof want - (size_t)k, ",%d", w.varied_success[t]);
+  for (int t = 0; t < ST_TRIAL_MAX_VARIED; t++)
+    k += snprintf(want + k, sizeof want - (size_t)k, ",%d", varied->success[t]);
   snprintf(want + k, sizeof want - (size_t)k, "\n");
-  const stFitnessLayout main_varied = {0, ST_PRIM_TRIALS, 1, 3, 1};
+  const stFitnessLayout main_varied = layout(0, ST_PRIM_TRIALS, ST_TRIAL_MAX_HANDOVER, 3, ST_TRIAL_MAX_VARIED);
   st_fitness_csv(&main_varied, &c);
   st_csv_row_text(&c.schema, &w, got, sizeof got);
   CU_ASSERT_STRING_EQUAL(got, want);
-  CU_ASSERT_EQUAL(c.schema.ncols, 13 + ST_PRIM_TRIALS + 1 + ST_HANDOVER_TRIALS + 1 + 3 + 8);
+  CU_ASSERT_EQUAL(c.schema.ncols, 13 + ST_PRIM_TRIALS + 1 + ST_TRIAL_MAX_HANDOVER + 1 + 3 + 8);
+}
+
+/* the kinds' columns are their rows': each kind's own column and its per-trial column, named
+ * by the row, in the table's order after the primitive stages' own columns */
+static void test_fitness_csv_kind_rows(void) {
+  stFitnessLayout l = layout(0, ST_PRIM_TRIALS, 0, 0, 0);
+  int n0;
+  const stFitnessColumn *common = st_fitness_columns(&n0);
+  int primitive = 0;
+  for (int i = 0; i < n0; i++) primitive += (common[i].stages & ST_FITNESS_PRIMITIVE) != 0;
+  stFitnessCsv c;
+  for (int k = 0; k < ST_TRIAL_KIND_COUNT; k++) l.kind_trials[k] = st_trial_kind_def((stTrialKind)k)->max;
+  st_fitness_csv(&l, &c);
+  int at = primitive;
+  for (int k = 0; k < ST_TRIAL_KIND_COUNT; k++) {
+    const stTrialKindDef *d = st_trial_kind_def((stTrialKind)k);
+    CU_ASSERT_EQUAL(d->kind, (stTrialKind)k);
+    if (d->column.name) CU_ASSERT_STRING_EQUAL(c.col[at++].name, d->column.name);
+    for (int t = 0; t < d->max; t++, at++) {
+      char want[32];
+      snprintf(want, sizeof want, d->trial_column, t);
+      CU_ASSERT_STRING_EQUAL(c.col[at].name, want);
+    }
+  }
+  CU_ASSERT_EQUAL(at, c.schema.ncols);
+  /* the fixed trials' column is the runs' trial column, which the reader finds */
+  CU_ASSERT_STRING_EQUAL(st_trial_kind_def(ST_TRIAL_FIXED)->trial_column, ST_TRIAL_COLUMN);
 }
 
 /* the trials of a generation, the columns found by name */
@@ -259,5 +305,6 @@ void st_suite_csv(void) {
   ST_ADD_TEST(test_numbers);
   ST_ADD_TEST(test_fitness_csv_layouts);
   ST_ADD_TEST(test_fitness_csv_rows);
+  ST_ADD_TEST(test_fitness_csv_kind_rows);
   ST_ADD_TEST(test_fitness_csv_successes);
 }

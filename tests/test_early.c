@@ -147,7 +147,7 @@ static void test_early_exact_equals_runout(void) {
       CU_ASSERT_EQUAL(dr.fail_end, ST_FAIL_END_RUNOUT);
       dx.words[0] = dx.words[1] = dr.words[0] = dr.words[1] =
           words ? ST_WORDS_CARETAKER : ST_WORDS_NONE;
-      dx.trials = dr.trials = 8; /* stage.chain_trials' table of the integrated stage */
+      dx.trials = dr.trials = 8; /* stage.kind[ST_TRIAL_CHAINED].trials' table of the integrated stage */
       stIntPlan plan[ST_INT_MAX_TRIALS];
       stIntTrialResult rx[ST_INT_MAX_TRIALS], rr[ST_INT_MAX_TRIALS];
       for (int i = 0; i < dx.trials; i++) {

@@ -248,7 +248,7 @@ static void forced_on_step(void *ctx, const stTraceStep *s) {
   }
 }
 
-/* st_trial_run_forced: a forced output is what the robot does, whatever the network says.
+/* forced outputs (st_net_controller): a forced output is what the robot does, whatever the network says.
  * Kinematic mode, finger flexion forced to 1 from the open hand of reach posture 0: each step
  * moves q-hat by alpha (1 - q) dt / range = 37 x 0.05 / 90 of the remaining (SPEC §3; 37 deg/s
  * < the 40 deg/s cap, the finger hinges span 90 deg), so 1 - q_n = (1 - q_from) r^(n - from)
@@ -279,34 +279,34 @@ static void test_forced_outputs(void) {
   memset(&from0, 0, sizeof from0);
   memset(&from10, 0, sizeof from10);
   memset(&focus, 0, sizeof focus);
-  CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, 1, &res0, forced_on_step, &free_run, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &np, NULL, NULL, 0, 1, &res0, forced_on_step, &free_run, err, sizeof err), ST_OK);
   stForce f0 = {ST_DOF_FINGER_FLEX, 1.0, 0};
-  CU_ASSERT_EQUAL_FATAL(st_trial_run_forced(p, &ws, &t, &np, &f0, 1, 1, &res, forced_on_step, &from0, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &np, NULL, &f0, 1, 1, &res, forced_on_step, &from0, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL_FATAL(from0.n, t.steps);
   for (int n = 0; n < from0.n; n++) /* the trace shows the state after step n: n + 1 moves */
     CU_ASSERT_DOUBLE_EQUAL(from0.qf[n], 1.0 - pow(r, n + 1), 1e-9);
   /* from step 10: the free run's trajectory bit for bit before, the law from there on */
   stForce f10 = {ST_DOF_FINGER_FLEX, 1.0, 10};
-  CU_ASSERT_EQUAL_FATAL(st_trial_run_forced(p, &ws, &t, &np, &f10, 1, 1, &res, forced_on_step, &from10, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &np, NULL, &f10, 1, 1, &res, forced_on_step, &from10, err, sizeof err), ST_OK);
   for (int n = 0; n < 10; n++) CU_ASSERT_EQUAL(from10.qf[n], free_run.qf[n]);
   for (int n = 10; n < from10.n; n++)
     CU_ASSERT_DOUBLE_EQUAL(1.0 - from10.qf[n], (1.0 - free_run.qf[9]) * pow(r, n - 9), 1e-9);
   /* the evolved reach keeps its fingers open: the forced run really differs */
   CU_ASSERT(free_run.qf[free_run.n - 1] < 0.5 && from10.qf[from10.n - 1] > 0.6);
   stForce ff = {ST_NET_OUT_FOCUS, 1.0, 0};
-  CU_ASSERT_EQUAL_FATAL(st_trial_run_forced(p, &ws, &t, &np, &ff, 1, 1, &res, forced_on_step, &focus, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &np, NULL, &ff, 1, 1, &res, forced_on_step, &focus, err, sizeof err), ST_OK);
   for (int n = 0; n < focus.n; n++) CU_ASSERT_EQUAL(focus.S[n], 0.0);
   CU_ASSERT_EQUAL(res.sum_s, 0.0);
   CU_ASSERT(res0.sum_s > 10.0); /* with its own focus the evolved reach scores */
   /* nothing forced: st_trial_run exactly */
-  CU_ASSERT_EQUAL_FATAL(st_trial_run_forced(p, &ws, &t, &np, NULL, 0, 1, &res, NULL, NULL, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &np, NULL, NULL, 0, 1, &res, NULL, NULL, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL(res.sum_s, res0.sum_s);
   CU_ASSERT_EQUAL(res.sum_p, res0.sum_p);
   /* out of range: refused, naming the output */
   stForce bad[3] = {{13, 1.0, 0}, {9, 1.5, 0}, {9, 1.0, -1}};
   for (int i = 0; i < 3; i++) {
     err[0] = 0;
-    CU_ASSERT_EQUAL(st_trial_run_forced(p, &ws, &t, &np, &bad[i], 1, 1, &res, NULL, NULL, err, sizeof err), ST_ERR_RANGE);
+    CU_ASSERT_EQUAL(st_test_net_trial(p, &ws, &t, &np, NULL, &bad[i], 1, 1, &res, NULL, NULL, err, sizeof err), ST_ERR_RANGE);
     CU_ASSERT_PTR_NOT_NULL(strstr(err, i == 0 ? "forced output 13" : "forced output 9"));
   }
   st_genome_set_free(&evolved);
@@ -349,9 +349,9 @@ static void test_primitive_subset(void) {
     stNetParams np;
     CU_ASSERT_EQUAL_FATAL(st_net_decode(NULL, ST_ARCH_BASE, &g, &np, err, sizeof err), ST_OK);
     stEvaluation ef, eg, e2;
-    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(full, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, &ef, err, sizeof err), ST_OK);
-    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(grasp, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, &eg, err, sizeof err), ST_OK);
-    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(two, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, &e2, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(full, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, NULL, &ef, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(grasp, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, NULL, &eg, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(two, &ws, ST_STAGE_SIMPLE, GEN, ind, &np, NULL, &e2, err, sizeof err), ST_OK);
     CU_ASSERT_EQUAL(ef.ntrials, 16);
     CU_ASSERT_EQUAL(eg.ntrials, 4);
     CU_ASSERT_EQUAL(e2.ntrials, 8);
@@ -366,10 +366,10 @@ static void test_primitive_subset(void) {
     int sg = 0, s2 = 0;
     for (int t = 0; t < ST_PRIM_TRIALS; t++) {
       const int prim = t / ST_NPOSTURE;
-      CU_ASSERT_EQUAL(eg.success[t], prim == ST_PRIM_GRASP ? ef.success[t] : 0);
-      CU_ASSERT_EQUAL(e2.success[t], prim == ST_PRIM_REACH || prim == ST_PRIM_MOVE ? ef.success[t] : 0);
-      sg += eg.success[t];
-      s2 += e2.success[t];
+      CU_ASSERT_EQUAL(eg.kind[ST_TRIAL_FIXED].success[t], prim == ST_PRIM_GRASP ? ef.kind[ST_TRIAL_FIXED].success[t] : 0);
+      CU_ASSERT_EQUAL(e2.kind[ST_TRIAL_FIXED].success[t], prim == ST_PRIM_REACH || prim == ST_PRIM_MOVE ? ef.kind[ST_TRIAL_FIXED].success[t] : 0);
+      sg += eg.kind[ST_TRIAL_FIXED].success[t];
+      s2 += e2.kind[ST_TRIAL_FIXED].success[t];
     }
     CU_ASSERT_EQUAL(eg.successes, sg);
     CU_ASSERT_EQUAL(e2.successes, s2);

@@ -16,6 +16,13 @@
 /* the best genotype of a committed primitive run that completed main-prim */
 static const char EVOLVED[] = "data/evolved/prims_s2/population.genome";
 
+/* a config's own rules, then its trial kinds' (selftalk/trialkind.h: st_trial_kinds_check),
+ * as every run checks them */
+static stStatus validate(const stConfig *c, char *err, size_t errsz) {
+  stStatus st = st_config_validate(c, err, errsz);
+  return st ? st : st_trial_kinds_check(c, NULL, err, errsz);
+}
+
 /* main-prim's protocol with stage.handover (and the fallback: rollin < 0; the roll-in's length:
  * |rollin| > 0) and stage.handover_rollin = elite when elite */
 static stProtocol *protocol_elite(int handover, int rollin, int elite) {
@@ -75,9 +82,9 @@ static void test_handover_specs(void) {
       st_trial_spec(p, ST_STAGE_MAIN, gen, i, &a);
       st_trial_spec(off, ST_STAGE_MAIN, gen, i, &b);
       CU_ASSERT(memcmp(&a, &b, sizeof a) == 0);
-      CU_ASSERT_EQUAL(a.handover, 0);
+      CU_ASSERT_EQUAL(a.kind, ST_TRIAL_FIXED);
     }
-    for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
+    for (int j = 0; j < ST_TRIAL_MAX_HANDOVER; j++) {
       stTrialSpec t, t2, other, fb;
       st_trial_spec(p, ST_STAGE_MAIN, gen, ST_PRIM_TRIALS + j, &t);
       st_trial_spec(off, ST_STAGE_MAIN, gen, ST_PRIM_TRIALS + j, &t2);
@@ -85,7 +92,7 @@ static void test_handover_specs(void) {
       const int prim = 1 + j / 4, k = j % 4;
       CU_ASSERT_EQUAL(t.primitive, prim);
       CU_ASSERT_EQUAL(t.k, k);
-      CU_ASSERT_EQUAL(t.handover, 1);
+      CU_ASSERT(t.kind == ST_TRIAL_HANDOVER && t.j == j);
       CU_ASSERT_EQUAL(t.rollin_steps, 170);
       CU_ASSERT_EQUAL(t.steps, steps[prim]);
       CU_ASSERT_EQUAL(t.table_off_step, table_off[prim]);
@@ -98,7 +105,7 @@ static void test_handover_specs(void) {
       CU_ASSERT(memcmp(t.obj, t2.obj, sizeof t.obj) == 0); /* the spec, not the key, decides */
       CU_ASSERT(memcmp(t.obj, other.obj, sizeof t.obj) != 0);
       st_handover_fallback(p, &t, &fb);
-      CU_ASSERT_EQUAL(fb.handover, 0);
+      CU_ASSERT_EQUAL(fb.kind, ST_TRIAL_FIXED);
       CU_ASSERT_EQUAL(fb.primitive, prim);
       CU_ASSERT_EQUAL(fb.index, ST_PRIM_TRIALS + j);
       CU_ASSERT(memcmp(fb.qhat0, p->posture[prim][k], sizeof fb.qhat0) == 0);
@@ -153,7 +160,7 @@ static void test_handover_rollin(void) {
   stWorkspace ws = {NULL, NULL, NULL};
   char err[512] = "";
   int handed = 0;
-  for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
+  for (int j = 0; j < ST_TRIAL_MAX_HANDOVER; j++) {
     stTrialSpec t;
     st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_TRIALS + j, &t);
     const uint64_t key = st_trial_seed_key(p, 0, 0, ST_PRIM_TRIALS + j);
@@ -161,7 +168,7 @@ static void test_handover_rollin(void) {
     memset(&h, 0, sizeof h);
     memset(&c, 0, sizeof c);
     stTrialResult r;
-    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, key, &r, on_step, &h, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &np, NULL, NULL, 0, key, &r, on_step, &h, err, sizeof err), ST_OK);
     /* the caretaker's chain from the same start, unscored, the table kept */
     stEpisodeSpec e;
     stWords w;
@@ -216,19 +223,19 @@ static void test_handover_fallback(void) {
   CU_ASSERT_FATAL(evolved_net(&np));
   stWorkspace ws = {NULL, NULL, NULL};
   char err[512] = "";
-  for (int j = 0; j < ST_HANDOVER_TRIALS; j += 3) {
+  for (int j = 0; j < ST_TRIAL_MAX_HANDOVER; j += 3) {
     stTrialSpec t, fb;
     st_trial_spec(p, ST_STAGE_MAIN, 3, ST_PRIM_TRIALS + j, &t);
     st_handover_fallback(p, &t, &fb);
     const uint64_t key = st_trial_seed_key(p, 3, 7, ST_PRIM_TRIALS + j);
     stTrialResult r, want;
-    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t, &np, key, &r, NULL, NULL, err, sizeof err), ST_OK);
-    CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &fb, &np, key, &want, NULL, NULL, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &np, NULL, NULL, 0, key, &r, NULL, NULL, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &fb, &np, NULL, NULL, 0, key, &want, NULL, NULL, err, sizeof err), ST_OK);
     CU_ASSERT_EQUAL(r.handover_step, -1);
     CU_ASSERT(r.sum_s == want.sum_s && r.sum_p == want.sum_p && r.success == want.success &&
               r.steps == want.steps && r.steps_run == want.steps_run);
     CU_ASSERT(want.sum_s > 0.0);
-    CU_ASSERT_EQUAL_FATAL(st_trial_run(none, &ws, &t, &np, key, &r, NULL, NULL, err, sizeof err), ST_OK);
+    CU_ASSERT_EQUAL_FATAL(st_test_net_trial(none, &ws, &t, &np, NULL, NULL, 0, key, &r, NULL, NULL, err, sizeof err), ST_OK);
     CU_ASSERT(r.handover_step == -1 && r.sum_s == 0.0 && r.sum_p == 0.0 && r.success == 0 &&
               r.steps == t.steps && r.steps_run == 0 && r.end == ST_END_QUIET);
   }
@@ -252,7 +259,7 @@ static stTrialResult hand_trial(const stProtocol *p, stWorkspace *ws, const stNe
   stTrialResult r;
   char err[512] = "";
   memset(&r, 0, sizeof r);
-  CU_ASSERT_EQUAL(st_trial_run(p, ws, &t, np, st_trial_seed_key(p, gen, ind, i), &r, NULL, NULL,
+  CU_ASSERT_EQUAL(st_test_net_trial(p, ws, &t, np, NULL, NULL, 0, st_trial_seed_key(p, gen, ind, i), &r, NULL, NULL,
                                err, sizeof err), ST_OK);
   h->sp[t.primitive] += r.sum_s - r.sum_p;
   h->n[t.primitive] += r.steps;
@@ -287,8 +294,8 @@ static void test_handover_fitness(void) {
   char err[512] = "";
   const int gen = 1, ind = 5;
   stEvaluation e, e0;
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, NULL, &e, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, NULL, &e0, err, sizeof err), ST_OK);
   handSums h;
   memset(&h, 0, sizeof h);
   int hs = 0, handovers = 0;
@@ -296,10 +303,10 @@ static void test_handover_fitness(void) {
   for (int i = 0; i < 28; i++) {
     const stTrialResult r = hand_trial(p, &ws, &np, gen, ind, i, &h);
     if (i < ST_PRIM_TRIALS) {
-      CU_ASSERT_EQUAL(e.success[i], r.success);
-      CU_ASSERT_EQUAL(e0.success[i], r.success);
+      CU_ASSERT_EQUAL(e.kind[ST_TRIAL_FIXED].success[i], r.success);
+      CU_ASSERT_EQUAL(e0.kind[ST_TRIAL_FIXED].success[i], r.success);
     } else {
-      CU_ASSERT_EQUAL(e.handover_success[i - ST_PRIM_TRIALS], r.success);
+      CU_ASSERT_EQUAL(e.kind[ST_TRIAL_HANDOVER].success[i - ST_PRIM_TRIALS], r.success);
       hs += r.success;
       handovers += r.handover_step >= 0;
     }
@@ -310,11 +317,11 @@ static void test_handover_fitness(void) {
   CU_ASSERT(e.fp[3] != e0.fp[3]);
   CU_ASSERT_EQUAL(e.ntrials, 28);
   CU_ASSERT_EQUAL(e0.ntrials, 16);
-  CU_ASSERT_EQUAL(e0.handover_trials, 0);
-  CU_ASSERT_EQUAL(e.handover_trials, 12);
+  CU_ASSERT_EQUAL(e0.kind[ST_TRIAL_HANDOVER].trials, 0);
+  CU_ASSERT_EQUAL(e.kind[ST_TRIAL_HANDOVER].trials, 12);
   CU_ASSERT_EQUAL(e.successes, h.successes);
-  CU_ASSERT_EQUAL(e.handover_successes, hs);
-  CU_ASSERT_EQUAL(e.handovers, handovers);
+  CU_ASSERT_EQUAL(e.kind[ST_TRIAL_HANDOVER].successes, hs);
+  CU_ASSERT_EQUAL(e.kind[ST_TRIAL_HANDOVER].count, handovers);
   st_workspace_free(&ws);
   st_protocol_destroy(p);
   st_protocol_destroy(off);
@@ -340,9 +347,9 @@ static void test_varied_fitness(void) {
   stWorkspace ws = {NULL, NULL, NULL};
   const int gen = 2, ind = 4;
   stEvaluation e, e0, eb;
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, &e, err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, &e0, err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(both, &ws, ST_STAGE_MAIN, gen, ind, &np, &eb, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(p, &ws, ST_STAGE_MAIN, gen, ind, &np, NULL, &e, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(off, &ws, ST_STAGE_MAIN, gen, ind, &np, NULL, &e0, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(both, &ws, ST_STAGE_MAIN, gen, ind, &np, NULL, &eb, err, sizeof err), ST_OK);
   handSums h;
   memset(&h, 0, sizeof h);
   int vs = 0;
@@ -350,21 +357,21 @@ static void test_varied_fitness(void) {
     if (i >= 16 && i < 28) continue;
     const stTrialResult r = hand_trial(p, &ws, &np, gen, ind, i, &h);
     if (i < 16) {
-      CU_ASSERT_EQUAL(e.success[i], r.success);
-      CU_ASSERT_EQUAL(e0.success[i], r.success);
+      CU_ASSERT_EQUAL(e.kind[ST_TRIAL_FIXED].success[i], r.success);
+      CU_ASSERT_EQUAL(e0.kind[ST_TRIAL_FIXED].success[i], r.success);
     } else {
-      CU_ASSERT_EQUAL(e.varied_success[i - 28], r.success);
-      CU_ASSERT_EQUAL(eb.varied_success[i - 28], r.success);
+      CU_ASSERT_EQUAL(e.kind[ST_TRIAL_VARIED].success[i - 28], r.success);
+      CU_ASSERT_EQUAL(eb.kind[ST_TRIAL_VARIED].success[i - 28], r.success);
       vs += r.success;
     }
   }
   const long want_n[4] = {400, 480, 640, 280};
   check_eq_2_3(&e, &h, want_n);
   CU_ASSERT(e.fp[0] == e0.fp[0] && e.fp[3] == e0.fp[3]); /* no varied reach or move trials */
-  CU_ASSERT(e.ntrials == 24 && e.varied_trials == 8 && e.handover_trials == 0);
-  CU_ASSERT(e0.varied_trials == 0 && eb.ntrials == 36 && eb.varied_trials == 8 && eb.handover_trials == 12);
+  CU_ASSERT(e.ntrials == 24 && e.kind[ST_TRIAL_VARIED].trials == 8 && e.kind[ST_TRIAL_HANDOVER].trials == 0);
+  CU_ASSERT(e0.kind[ST_TRIAL_VARIED].trials == 0 && eb.ntrials == 36 && eb.kind[ST_TRIAL_VARIED].trials == 8 && eb.kind[ST_TRIAL_HANDOVER].trials == 12);
   CU_ASSERT_EQUAL(e.successes, h.successes);
-  CU_ASSERT_EQUAL(e.varied_successes, vs);
+  CU_ASSERT_EQUAL(e.kind[ST_TRIAL_VARIED].successes, vs);
   CU_ASSERT(vs > 0); /* prims_s2's best solves drawn starts too: the sums are not all failures */
   st_workspace_free(&ws);
   st_protocol_destroy(p);
@@ -389,8 +396,8 @@ static int chain_case(const stConfig *cfg, int index, chainCase *k) {
   char err[512] = "";
   if (st_protocol_create(&c, &k->off, err, sizeof err) || st_protocol_create(cfg, &k->p, err, sizeof err) ||
       !evolved_net_at(&k->np, index) ||
-      st_stage_evaluate(k->p, &k->ws, ST_STAGE_MAIN, 2, 3, &k->np, &k->e, err, sizeof err) ||
-      st_stage_evaluate(k->off, &k->ws, ST_STAGE_MAIN, 2, 3, &k->np, &k->e0, err, sizeof err)) {
+      st_stage_evaluate(k->p, &k->ws, ST_STAGE_MAIN, 2, 3, &k->np, NULL, &k->e, err, sizeof err) ||
+      st_stage_evaluate(k->off, &k->ws, ST_STAGE_MAIN, 2, 3, &k->np, NULL, &k->e0, err, sizeof err)) {
     fprintf(stderr, "%s\n", err);
     return 0;
   }
@@ -403,7 +410,7 @@ static void chain_case_free(chainCase *k) {
   st_protocol_destroy(k->off);
 }
 
-/* Main-prim's chained trials (stage.chain_trials): F is the harmonic mean of the four F_p,
+/* Main-prim's chained trials (stage.kind[ST_TRIAL_CHAINED].trials): F is the harmonic mean of the four F_p,
  * which they leave unchanged, and f_chain; f_chain is eq. 2.14 over the integrated stage's
  * trials with the caretaker's words: B (10 per move or focus bonus) + 100 / (n x 240) times
  * the sum of max(0, S - P), recomputed here from each trial run alone; the stage's trial and
@@ -433,21 +440,21 @@ static void test_chain_fitness(void) {
                                            NULL, err, sizeof err), ST_OK);
     CU_ASSERT(plan.words == ST_WORDS_CARETAKER && plan.fitness == ST_FIT_INTEGRATED &&
               plan.bonus_factor == 1.0);
-    CU_ASSERT_EQUAL(e.chain_success[i], r.success);
+    CU_ASSERT_EQUAL(e.kind[ST_TRIAL_CHAINED].success[i], r.success);
     bonus += 10.0 * (r.success + r.focus_bonus);
     points += fmax(0.0, r.sum_s - r.sum_p);
     successes += r.success;
   }
   const double f_chain = bonus + 100.0 / (3.0 * 240.0) * points;
-  CU_ASSERT_DOUBLE_EQUAL(e.f_chain, f_chain, 1e-9 * f_chain);
-  CU_ASSERT(e.f_chain > 0.0);
+  CU_ASSERT_DOUBLE_EQUAL(e.kind[ST_TRIAL_CHAINED].fitness, f_chain, 1e-9 * f_chain);
+  CU_ASSERT(e.kind[ST_TRIAL_CHAINED].fitness > 0.0);
   double inv = 1.0 / f_chain;
   for (int k = 0; k < 4; k++) {
     CU_ASSERT_EQUAL(e.fp[k], e0.fp[k]);
     inv += 1.0 / e0.fp[k];
   }
   CU_ASSERT_DOUBLE_EQUAL(e.fitness, 5.0 / inv, 1e-9 * e.fitness);
-  CU_ASSERT_EQUAL(e.chain_trials, 3);
+  CU_ASSERT_EQUAL(e.kind[ST_TRIAL_CHAINED].trials, 3);
   CU_ASSERT_EQUAL(e.ntrials, 19);
   CU_ASSERT_EQUAL(e.successes, e0.successes + successes);
   /* the integrated trials' keys act in main-prim with chained trials only */
@@ -457,7 +464,7 @@ static void test_chain_fitness(void) {
   ST_ASSERT_CONTAINS(err, "integrated.steps");
   c.stage_chain_trials = 2;
   CU_ASSERT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
-  c.integrated_trials = 4; /* the chained trials' count is stage.chain_trials */
+  c.integrated_trials = 4; /* the chained trials' count is stage.kind[ST_TRIAL_CHAINED].trials */
   CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "integrated.trials");
   chain_case_free(&cc);
@@ -471,6 +478,21 @@ static void test_chain_fitness(void) {
  * trials completes under all only with all 44 solved; under fixed_chained with the 16 and the 8
  * chained solved, whatever the hand-over and varied ones; without chained trials (simple-prim
  * generations of a prims run) both rules are every trial */
+/* kind k's trials of an evaluation: n run, those of `solved` (bit j: trial j) solved, the
+ * totals kept */
+static void set_kind(stEvaluation *e, stTrialKind k, int n, unsigned long solved) {
+  stKindEvaluation *r = &e->kind[k];
+  e->ntrials += n - r->trials;
+  e->successes -= r->successes;
+  r->trials = n;
+  r->successes = 0;
+  for (int j = 0; j < ST_TRIAL_KIND_MAX; j++) {
+    r->success[j] = j < n && (solved >> j & 1ul);
+    r->successes += r->success[j];
+  }
+  e->successes += r->successes;
+}
+
 static void test_evaluation_completes(void) {
   stConfig all, fc;
   st_config_default(&all);
@@ -478,28 +500,32 @@ static void test_evaluation_completes(void) {
   fc.stage_chain_complete = ST_CHAIN_COMPLETE_FIXED_CHAINED;
   stEvaluation e;
   memset(&e, 0, sizeof e);
-  e.ntrials = 44, e.handover_trials = 12, e.varied_trials = 8, e.chain_trials = 8;
-  for (int t = 0; t < 16; t++) e.success[t] = 1;
-  e.chain_successes = 8, e.handover_successes = 12, e.varied_successes = 8;
-  e.successes = 44;
+  set_kind(&e, ST_TRIAL_FIXED, 16, 0xfffful);
+  set_kind(&e, ST_TRIAL_HANDOVER, 12, 0xffful);
+  set_kind(&e, ST_TRIAL_VARIED, 8, 0xfful);
+  set_kind(&e, ST_TRIAL_CHAINED, 8, 0xfful);
+  CU_ASSERT_EQUAL(e.ntrials, 44);
   CU_ASSERT(st_evaluation_completes(&all, &e) && st_evaluation_completes(&fc, &e));
-  e.handover_successes = 9, e.varied_successes = 5, e.successes = 38;
+  set_kind(&e, ST_TRIAL_HANDOVER, 12, 0x1fful);
+  set_kind(&e, ST_TRIAL_VARIED, 8, 0x1ful);
   CU_ASSERT(!st_evaluation_completes(&all, &e) && st_evaluation_completes(&fc, &e));
-  e.chain_successes = 7, e.successes = 37;
+  set_kind(&e, ST_TRIAL_CHAINED, 8, 0x7ful);
   CU_ASSERT(!st_evaluation_completes(&fc, &e));
-  e.chain_successes = 8, e.success[15] = 0, e.successes = 37;
+  set_kind(&e, ST_TRIAL_CHAINED, 8, 0xfful);
+  set_kind(&e, ST_TRIAL_FIXED, 16, 0x7ffful);
   CU_ASSERT(!st_evaluation_completes(&fc, &e));
   /* postures.vary_replace_generations: the 16 and the 8 chained solved, but the open and grasp
    * trials from drawn starts (no varied trials run), under fixed_chained: not the thesis's 16 */
-  e.success[15] = 1, e.varied_trials = 0, e.varied_successes = 0, e.ntrials = 36;
-  e.successes = 16 + 9 + 8;
+  set_kind(&e, ST_TRIAL_FIXED, 16, 0xfffful);
+  set_kind(&e, ST_TRIAL_VARIED, 0, 0);
+  CU_ASSERT_EQUAL(e.ntrials, 36);
   CU_ASSERT(st_evaluation_completes(&fc, &e));
-  e.fixed_drawn = 8;
+  e.kind[ST_TRIAL_FIXED].count = 8;
   CU_ASSERT(!st_evaluation_completes(&fc, &e));
   /* and under chain_complete = all, every trial solved (the 16 from drawn starts): with extra
    * the drawn starts are its first phase, so still not complete; under replace they are the
    * protocol, so complete */
-  e.handover_successes = 12, e.successes = 36;
+  set_kind(&e, ST_TRIAL_HANDOVER, 12, 0xffful);
   all.postures_vary_starts = 1, all.postures_vary_trials = ST_VARY_EXTRA;
   all.postures_vary_replace_generations = 30;
   CU_ASSERT(!st_evaluation_completes(&all, &e));
@@ -508,17 +534,16 @@ static void test_evaluation_completes(void) {
   st_config_default(&all);
   /* simple-prim: 16 trials, no chained ones */
   memset(&e, 0, sizeof e);
-  e.ntrials = 16, e.successes = 15;
-  for (int t = 0; t < 15; t++) e.success[t] = 1;
+  set_kind(&e, ST_TRIAL_FIXED, 16, 0x7ffful);
   CU_ASSERT(!st_evaluation_completes(&all, &e) && !st_evaluation_completes(&fc, &e));
-  e.success[15] = 1, e.successes = 16;
+  set_kind(&e, ST_TRIAL_FIXED, 16, 0xfffful);
   CU_ASSERT(st_evaluation_completes(&all, &e) && st_evaluation_completes(&fc, &e));
-  /* stage.primitives = reach,grasp: 8 fixed trials and 8 chained */
+  /* stage.primitives = reach,grasp: 8 fixed trials (reach's and grasp's) and 8 chained */
   memset(&e, 0, sizeof e);
-  e.ntrials = 16, e.chain_trials = 8, e.chain_successes = 8, e.successes = 16;
-  for (int t = 0; t < 4; t++) e.success[t] = e.success[8 + t] = 1;
+  set_kind(&e, ST_TRIAL_FIXED, 8, 0xfful);
+  set_kind(&e, ST_TRIAL_CHAINED, 8, 0xfful);
   CU_ASSERT(st_evaluation_completes(&fc, &e));
-  e.success[9] = 0, e.successes = 15;
+  set_kind(&e, ST_TRIAL_FIXED, 8, 0xfdul);
   CU_ASSERT(!st_evaluation_completes(&fc, &e));
 }
 
@@ -556,10 +581,10 @@ static void test_chain_sum(void) {
   }
   CU_ASSERT(furthest > 0.0); /* the term is not empty here */
   const double f_chain = bonus + 100.0 / (3.0 * 240.0) * points + 10.0 * furthest / 3.0;
-  CU_ASSERT_DOUBLE_EQUAL(e.f_chain, f_chain, 1e-9 * f_chain);
+  CU_ASSERT_DOUBLE_EQUAL(e.kind[ST_TRIAL_CHAINED].fitness, f_chain, 1e-9 * f_chain);
   int solved = 0;
   double inv = 0.0;
-  for (int i = 0; i < 16; i++) solved += e0.success[i];
+  for (int i = 0; i < 16; i++) solved += e0.kind[ST_TRIAL_FIXED].success[i];
   for (int k = 0; k < 4; k++) inv += 1.0 / e0.fp[k];
   const double w = (solved / 16.0) * (solved / 16.0);
   CU_ASSERT(solved > 0 && solved < 16);
@@ -567,16 +592,16 @@ static void test_chain_sum(void) {
   /* the gate and the progress weight act only where they shape something */
   st_config_default(&c);
   c.stage_chain_progress = 5.0;
-  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_NOT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "expected stage.chain_trials > 0");
   c.stage_chain_trials = 2;
-  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   c.stage_chain_gate = 4.0;
-  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_NOT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "stage.chain_gate");
   ST_ASSERT_CONTAINS(err, "expected stage.chain_combine = sum");
   c.stage_chain_combine = ST_CHAIN_SUM;
-  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   chain_case_free(&cc);
 }
 
@@ -589,14 +614,14 @@ static void test_handover_keys(void) {
   st_config_default(&c);
   CU_ASSERT_EQUAL(c.stage_handover, 0);
   c.stage_handover_rollin_steps = 100;
-  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_NOT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "stage.handover_rollin_steps");
   ST_ASSERT_CONTAINS(err, "expected stage.handover = true");
   c.stage_handover = 1;
-  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   st_config_default(&c);
   c.stage_handover_fallback = 1;
-  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_NOT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "stage.handover_fallback");
 
   st_config_default(&c);
@@ -625,7 +650,7 @@ static void test_rollin_elite_self(void) {
   char err[512] = "";
   const int gen = 2;
   int handed = 0;
-  for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
+  for (int j = 0; j < ST_TRIAL_MAX_HANDOVER; j++) {
     const int i = ST_PRIM_TRIALS + j;
     stTrialSpec t;
     st_trial_spec(pe, ST_STAGE_MAIN, gen, i, &t);
@@ -633,22 +658,22 @@ static void test_rollin_elite_self(void) {
     CU_ASSERT_EQUAL(st_trial_seed_key(pe, gen, 7, i), st_trial_seed_key(ps, gen, 0, i));
     CU_ASSERT_NOT_EQUAL(st_trial_seed_key(ps, gen, 7, i), st_trial_seed_key(ps, gen, 0, i));
     stTrialResult a, b;
-    CU_ASSERT_EQUAL_FATAL(st_trial_run_rollin(pe, &ws, &t, &elite, &elite, NULL, 0,
+    CU_ASSERT_EQUAL_FATAL(st_test_net_trial(pe, &ws, &t, &elite, &elite, NULL, 0,
                                               st_trial_seed_key(pe, gen, 7, i), &a, NULL, NULL,
                                               err, sizeof err), ST_OK);
-    CU_ASSERT_EQUAL_FATAL(st_trial_run(ps, &ws, &t, &elite, st_trial_seed_key(ps, gen, 0, i), &b,
+    CU_ASSERT_EQUAL_FATAL(st_test_net_trial(ps, &ws, &t, &elite, NULL, NULL, 0, st_trial_seed_key(ps, gen, 0, i), &b,
                                        NULL, NULL, err, sizeof err), ST_OK);
     CU_ASSERT(memcmp(&a, &b, sizeof a) == 0);
     handed += a.handover_step >= 0;
   }
   CU_ASSERT(handed >= 4);
   stEvaluation e, e0;
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate_rollin(pe, &ws, ST_STAGE_MAIN, gen, 0, &elite, &elite, &e,
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(pe, &ws, ST_STAGE_MAIN, gen, 0, &elite, &elite, &e,
                                                  err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(ps, &ws, ST_STAGE_MAIN, gen, 0, &elite, &e0, err,
+  CU_ASSERT_EQUAL_FATAL(st_stage_evaluate(ps, &ws, ST_STAGE_MAIN, gen, 0, &elite, NULL, &e0, err,
                                           sizeof err), ST_OK);
   CU_ASSERT(memcmp(&e, &e0, sizeof e) == 0);
-  CU_ASSERT_EQUAL(e.handover_trials, 12);
+  CU_ASSERT_EQUAL(e.kind[ST_TRIAL_HANDOVER].trials, 12);
   st_workspace_free(&ws);
   st_protocol_destroy(pe);
   st_protocol_destroy(ps);
@@ -668,7 +693,7 @@ static void test_rollin_elite_trace(void) {
   char err[512] = "";
   const int gen = 1;
   int handed = 0, differs = 0;
-  for (int j = 0; j < ST_HANDOVER_TRIALS; j++) {
+  for (int j = 0; j < ST_TRIAL_MAX_HANDOVER; j++) {
     const int i = ST_PRIM_TRIALS + j;
     stTrialSpec t;
     st_trial_spec(p, ST_STAGE_MAIN, gen, i, &t);
@@ -676,10 +701,10 @@ static void test_rollin_elite_trace(void) {
     memset(&me, 0, sizeof me);
     memset(&ind, 0, sizeof ind);
     stTrialResult rm, ri;
-    CU_ASSERT_EQUAL_FATAL(st_trial_run_rollin(p, &ws, &t, &elite, &elite, NULL, 0,
+    CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &elite, &elite, NULL, 0,
                                               st_trial_seed_key(p, gen, 0, i), &rm, on_step, &me,
                                               err, sizeof err), ST_OK);
-    CU_ASSERT_EQUAL_FATAL(st_trial_run_rollin(p, &ws, &t, &other, &elite, NULL, 0,
+    CU_ASSERT_EQUAL_FATAL(st_test_net_trial(p, &ws, &t, &other, &elite, NULL, 0,
                                               st_trial_seed_key(p, gen, 7, i), &ri, on_step, &ind,
                                               err, sizeof err), ST_OK);
     CU_ASSERT_EQUAL(ri.handover_step, rm.handover_step);
@@ -714,26 +739,26 @@ static void test_rollin_elite_trace(void) {
 
 /* Where elite roll-ins cannot act they are refused: stage.handover off, a stage without
  * hand-over trials (simple-prim, the integrated stage), no elites kept; a roll-in network
- * missing under elite or given under self; a network with memory (type A) on either side; a
- * roll-in for a trial that is not a hand-over trial. */
+ * missing under elite or given under self; a network with memory (type A) on either side; and
+ * a roll-in on a trial that is not a hand-over trial, where it never acts. */
 static void test_rollin_elite_refused(void) {
   stConfig c;
   char err[512] = "";
   st_config_default(&c);
   CU_ASSERT_EQUAL(c.stage_handover_rollin, ST_ROLLIN_SELF);
   c.stage_handover_rollin = ST_ROLLIN_ELITE;
-  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_NOT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "stage.handover_rollin");
   ST_ASSERT_CONTAINS(err, "expected stage.handover = true");
   c.stage_handover = 1;
-  CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL(st_config_check_stages(&c, ST_CONFIG_MAIN_PRIM, err, sizeof err), ST_OK);
   CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_SIMPLE_PRIM, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "stage.handover");
   CU_ASSERT_NOT_EQUAL(st_config_check_stages(&c, ST_CONFIG_INTEGRATED, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "stage.handover");
   c.ga_elites = 0;
-  CU_ASSERT_NOT_EQUAL(st_config_validate(&c, err, sizeof err), ST_OK);
+  CU_ASSERT_NOT_EQUAL(validate(&c, err, sizeof err), ST_OK);
   ST_ASSERT_CONTAINS(err, "stage.handover_rollin");
   ST_ASSERT_CONTAINS(err, "ga.elites >= 1");
 
@@ -744,11 +769,14 @@ static void test_rollin_elite_refused(void) {
   CU_ASSERT_FATAL(evolved_net(&np));
   a = np;
   a.arch = ST_ARCH_A; /* only the field the check reads */
+  stNetParams a0; /* another base network: genotype 0's genes shifted */
+  CU_ASSERT_FATAL(evolved_net(&a0));
+  for (int i = 0; i < (int)(sizeof a0.w_ih / sizeof a0.w_ih[0][0]); i++) (&a0.w_ih[0][0])[i] *= 0.5;
   stWorkspace ws = {NULL, NULL, NULL};
   stEvaluation e;
-  CU_ASSERT_EQUAL(st_stage_evaluate(pe, &ws, ST_STAGE_MAIN, 0, 1, &np, &e, err, sizeof err), ST_ERR_ARG);
+  CU_ASSERT_EQUAL(st_stage_evaluate(pe, &ws, ST_STAGE_MAIN, 0, 1, &np, NULL, &e, err, sizeof err), ST_ERR_ARG);
   ST_ASSERT_CONTAINS(err, "stage.handover_rollin = elite");
-  CU_ASSERT_EQUAL(st_stage_evaluate_rollin(ps, &ws, ST_STAGE_MAIN, 0, 1, &np, &np, &e, err, sizeof err),
+  CU_ASSERT_EQUAL(st_stage_evaluate(ps, &ws, ST_STAGE_MAIN, 0, 1, &np, &np, &e, err, sizeof err),
                   ST_ERR_ARG);
   ST_ASSERT_CONTAINS(err, "stage.handover_rollin = self");
   CU_ASSERT_EQUAL(st_stage_rollin_elite(pe, ST_STAGE_SIMPLE), 0);
@@ -758,14 +786,18 @@ static void test_rollin_elite_refused(void) {
   st_trial_spec(pe, ST_STAGE_MAIN, 0, ST_PRIM_TRIALS, &t);
   st_trial_spec(pe, ST_STAGE_MAIN, 0, 4, &fixed);
   stTrialResult r;
-  CU_ASSERT_EQUAL(st_trial_run_rollin(pe, &ws, &t, &a, &np, NULL, 0, 1, &r, NULL, NULL, err, sizeof err),
+  CU_ASSERT_EQUAL(st_test_net_trial(pe, &ws, &t, &a, &np, NULL, 0, 1, &r, NULL, NULL, err, sizeof err),
                   ST_ERR_ARG);
   ST_ASSERT_CONTAINS(err, "without memory");
-  CU_ASSERT_EQUAL(st_trial_run_rollin(pe, &ws, &t, &np, &a, NULL, 0, 1, &r, NULL, NULL, err, sizeof err),
+  CU_ASSERT_EQUAL(st_test_net_trial(pe, &ws, &t, &np, &a, NULL, 0, 1, &r, NULL, NULL, err, sizeof err),
                   ST_ERR_ARG);
-  CU_ASSERT_EQUAL(st_trial_run_rollin(pe, &ws, &fixed, &np, &np, NULL, 0, 1, &r, NULL, NULL, err,
-                                      sizeof err), ST_ERR_ARG);
-  ST_ASSERT_CONTAINS(err, "no hand-over trial");
+  /* on a trial that is not a hand-over trial the roll-in never acts: the individual's alone */
+  stTrialResult alone;
+  CU_ASSERT_EQUAL(st_test_net_trial(pe, &ws, &fixed, &np, &a0, NULL, 0, 1, &r, NULL, NULL, err,
+                                    sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_test_net_trial(pe, &ws, &fixed, &np, NULL, NULL, 0, 1, &alone, NULL, NULL,
+                                    err, sizeof err), ST_OK);
+  CU_ASSERT(memcmp(&r, &alone, sizeof r) == 0);
   st_workspace_free(&ws);
   st_protocol_destroy(pe);
   st_protocol_destroy(ps);

@@ -354,7 +354,7 @@ static void test_int_selftalk_loop(void) {
   e.dynamic = 0;
   static talker tk;
   int labels[8];
-  stController ctl = {NULL, talker_act, ST_NET_MAX_IN, &tk, ST_NET_MAX_OUT, 1};
+  stController ctl = {NULL, talker_act, ST_NET_MAX_IN, &tk, ST_NET_MAX_OUT, 1, NULL};
   stScorer sc = {NULL, nothing_step, NULL, labels};
   stWorkspace ws = {NULL, NULL, NULL};
   const stWordSource sources[2] = {ST_WORDS_SELFTALK, ST_WORDS_CARETAKER};

@@ -377,7 +377,7 @@ static void fake_run(const char *dir, const char *cfg_path, const char *row1) {
   snprintf(path, sizeof path, "%s/fitness.csv", dir);
   f = fopen(path, "w");
   stFitnessCsv csv; /* an integrated run of 8 trials: evolve's columns */
-  const stFitnessLayout layout = {1, 8, 0, 0, 0};
+  const stFitnessLayout layout = {1, 8, {0}};
   st_fitness_csv(&layout, &csv);
   st_csv_write_header(f, &csv.schema);
   fprintf(f, "0,1,1,1,1,0,10,0,8,1,1,1,1,1,1,1,1\n%s\n", row1);

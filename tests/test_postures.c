@@ -708,7 +708,7 @@ static void test_trial_varied_extra(void) {
       st_trial_spec(extra, ST_STAGE_MAIN, gen, 28 + j, &v);
       st_trial_spec(fixed, ST_STAGE_MAIN, gen, 4 + j, &f);
       const int prim = 1 + j / 4, k = j % 4;
-      CU_ASSERT(v.primitive == prim && v.k == k && v.index == 28 + j && v.handover == 0);
+      CU_ASSERT(v.primitive == prim && v.k == k && v.index == 28 + j && v.kind == ST_TRIAL_VARIED);
       CU_ASSERT_EQUAL(v.steps, steps[j / 4]);
       CU_ASSERT_EQUAL(v.table_off_step, f.table_off_step);
       CU_ASSERT_EQUAL(v.target_index, k % 2);

@@ -52,13 +52,13 @@ static void test_warm_equals_cold(void) {
   memset(&e_cold, 0, sizeof e_cold);
   /* the warm workspace holds generation 1 of protocol a, then is asked for generation 2 and
    * for protocol b's generation 2 */
-  CU_ASSERT_EQUAL(st_stage_evaluate(a, &warm, ST_STAGE_SIMPLE, 1, 0, &np, &e_warm, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_stage_evaluate(a, &warm, ST_STAGE_SIMPLE, 1, 0, &np, NULL, &e_warm, err, sizeof err), ST_OK);
   const stProtocol *order[2] = {a, b};
   for (int k = 0; k < 2; k++) {
     stWorkspace cold = {NULL, NULL, NULL};
-    CU_ASSERT_EQUAL(st_stage_evaluate(order[k], &warm, ST_STAGE_SIMPLE, 2, 3, &np, &e_warm, err,
+    CU_ASSERT_EQUAL(st_stage_evaluate(order[k], &warm, ST_STAGE_SIMPLE, 2, 3, &np, NULL, &e_warm, err,
                                       sizeof err), ST_OK);
-    CU_ASSERT_EQUAL(st_stage_evaluate(order[k], &cold, ST_STAGE_SIMPLE, 2, 3, &np, &e_cold, err,
+    CU_ASSERT_EQUAL(st_stage_evaluate(order[k], &cold, ST_STAGE_SIMPLE, 2, 3, &np, NULL, &e_cold, err,
                                       sizeof err), ST_OK);
     CU_ASSERT(memcmp(&e_warm, &e_cold, sizeof e_warm) == 0);
     st_workspace_free(&cold);

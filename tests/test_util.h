@@ -45,6 +45,15 @@ typedef struct stTestFixture {
 } stTestFixture;
 const stTestFixture *st_test_fixture(void);
 
+/* One trial of a network, as evolve and replay run it: its outputs forced (nforce 0: none), and
+ * with a roll-in network the two composed (st_rollin_controller) - st_trial_run with the
+ * controllers built. Nullable: force, rollin, trace. */
+#include "selftalk/trial.h"
+stStatus st_test_net_trial(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+                           const stNetParams *net, const stNetParams *rollin, const stForce *force,
+                           int nforce, uint64_t key, stTrialResult *r, stTraceFn trace, void *ctx,
+                           char *err, size_t errsz);
+
 /* a fresh temporary directory, removed (recursively) when the test binary exits */
 const char *st_test_tmpdir(char *path, size_t n);
 

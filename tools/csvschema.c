@@ -4,7 +4,7 @@
  * take their column names from the one definition the writers and readers use.
  *
  *   build/csvschema > tools/csvschema.py
- *   build/csvschema --fitness-header INTEGRATED TRIALS HANDOVER CHAIN_TRIALS [VARIED]
+ *   build/csvschema --fitness-header INTEGRATED TRIALS [KIND=N]...
  *
  * tests/check_tools.sh fails while the committed file differs from what this prints; the
  * second form prints a layout's fitness.csv header (st_fitness_csv), against which the check
@@ -15,6 +15,7 @@
 
 #include "selftalk/fitnesscsv.h"
 #include "selftalk/postcsv.h"
+#include "selftalk/trialkind.h"
 
 /* the kinds of tools/figlib.py's read_csv */
 static const char *py_kind(stCsvKind k) {
@@ -33,60 +34,88 @@ static void columns(const char *var, const stCsvSchema *s) {
   printf("}\n%s_READ = %d\n", var, s->nread);
 }
 
+static const char *stages_of(unsigned stages) {
+  return stages == (ST_FITNESS_PRIMITIVE | ST_FITNESS_INTEGRATED) ? "(\"primitive\", \"integrated\")"
+         : stages == ST_FITNESS_INTEGRATED                       ? "(\"integrated\",)"
+                                                                 : "(\"primitive\",)";
+}
+
+/* fitness.csv: the table's columns, then each trial kind's (its rows, selftalk/trialkind.h) */
 static void fitness(void) {
   int n;
   const stFitnessColumn *c = st_fitness_columns(&n);
-  printf("\n# fitness.csv (./apps/evolve): every column a run's file may have, in file order; a name\n"
-         "# with %%d is one column per trial, from 0. FITNESS_IN: the runs that have the column\n"
-         "# (\"primitive\", \"integrated\"; with \"handover\", \"chain\" or \"varied\", only the primitive\n"
-         "# runs with main-prim's hand-over, chained or varied trials)\nFITNESS = {\n");
-  for (int i = 0; i < n; i++) printf("    \"%s\": \"%s\",\n", c[i].col.name, py_kind(c[i].col.kind));
-  printf("}\nFITNESS_IN = {\n");
-  static const char *const part[] = {"", "\"handover\", ", "\"chain\", ", "\"varied\", "};
-  for (int i = 0; i < n; i++) {
-    char in[96]; /* a tuple: each name followed by ", ", the last space cut */
-    snprintf(in, sizeof in, "%s%s%s", c[i].stages & ST_FITNESS_PRIMITIVE ? "\"primitive\", " : "",
-             c[i].stages & ST_FITNESS_INTEGRATED ? "\"integrated\", " : "", part[c[i].part]);
-    in[strlen(in) - 1] = 0;
-    printf("    \"%s\": (%s),\n", c[i].col.name, in);
-  }
-  static const char *const per[] = {"", "trial", "handover", "chain", "varied"};
-  printf("}\n# the columns one per trial: of the run's trials, its hand-over trials, its chained trials,\n"
-         "# its varied trials\n"
-         "FITNESS_PER = {\n");
+  printf("\n# fitness.csv (./apps/evolve): every column a run's file may have, in file order, as\n"
+         "# (name, the runs that have it, the trial kind it belongs to or None, one per trial: a name\n"
+         "# with %%d, from 0); the primitive stages' trials are their kinds' columns\n"
+         "FITNESS_COLUMNS = [\n");
   for (int i = 0; i < n; i++)
-    if (c[i].per != ST_FITNESS_ONE) printf("    \"%s\": \"%s\",\n", c[i].col.name, per[c[i].per]);
-  printf("}\nFITNESS_HANDOVER_TRIALS = %d\nFITNESS_VARIED_TRIALS = %d\nFITNESS_PRIMITIVE_TRIALS = %d\n",
-         ST_HANDOVER_TRIALS, ST_VARIED_TRIALS, ST_PRIM_TRIALS);
+    printf("    (\"%s\", %s, None, %s),\n", c[i].col.name, stages_of(c[i].stages),
+           c[i].per_trial ? "True" : "False");
+  for (int k = 0; k < ST_TRIAL_KIND_COUNT; k++) {
+    const stTrialKindDef *d = st_trial_kind_def((stTrialKind)k);
+    if (d->column.name)
+      printf("    (\"%s\", (\"primitive\",), \"%s\", False),\n", d->column.name, d->name);
+    printf("    (\"%s\", (\"primitive\",), \"%s\", True),\n", d->trial_column, d->name);
+  }
+  printf("]\n# {name: kind} of those columns\nFITNESS = {\n");
+  for (int i = 0; i < n; i++) printf("    \"%s\": \"%s\",\n", c[i].col.name, py_kind(c[i].col.kind));
+  for (int k = 0; k < ST_TRIAL_KIND_COUNT; k++) {
+    const stTrialKindDef *d = st_trial_kind_def((stTrialKind)k);
+    if (d->column.name) printf("    \"%s\": \"%s\",\n", d->column.name, py_kind(d->column.kind));
+    if (strcmp(d->trial_column, ST_TRIAL_COLUMN)) printf("    \"%s\": \"int\",\n", d->trial_column);
+  }
+  printf("}\n# the primitive stages' kinds of trials (selftalk/trialkind.h), in column order: the most\n"
+         "# trials of each\nTRIAL_KINDS = {\n");
+  for (int k = 0; k < ST_TRIAL_KIND_COUNT; k++)
+    printf("    \"%s\": %d,\n", st_trial_kind_def((stTrialKind)k)->name,
+           st_trial_kind_def((stTrialKind)k)->max);
+  printf("}\n");
 }
 
-/* a layout's header, as evolve writes it */
+/* a layout's header, as evolve writes it: INTEGRATED TRIALS [KIND=N]... (primitive: TRIALS the
+ * fixed trials, the other kinds none unless given) */
 static int fitness_header(char **arg, int narg) {
-  const stFitnessLayout l = {atoi(arg[0]), atoi(arg[1]), atoi(arg[2]), atoi(arg[3]),
-                             narg > 4 ? atoi(arg[4]) : 0};
-  if (l.trials < 0 || l.trials > ST_FITNESS_MAX_TRIALS || l.chain_trials < 0 ||
-      l.chain_trials > ST_CHAIN_TRIALS_MAX) {
-    fprintf(stderr, "csvschema: trials 0..%d, chained trials 0..%d\n", ST_FITNESS_MAX_TRIALS,
-            ST_CHAIN_TRIALS_MAX);
-    return 2;
+  stFitnessLayout l;
+  memset(&l, 0, sizeof l);
+  l.integrated = atoi(arg[0]);
+  const int trials = atoi(arg[1]);
+  if (l.integrated) l.trials = trials;
+  else l.kind_trials[ST_TRIAL_FIXED] = trials;
+  for (int i = 2; i < narg; i++) {
+    const char *eq = strchr(arg[i], '=');
+    int k = 0;
+    while (eq && k < ST_TRIAL_KIND_COUNT &&
+           strncmp(arg[i], st_trial_kind_def((stTrialKind)k)->name, (size_t)(eq - arg[i])))
+      k++;
+    if (!eq || k == ST_TRIAL_KIND_COUNT) {
+      fprintf(stderr, "csvschema: '%s': expected KIND=N of a trial kind\n", arg[i]);
+      return 2;
+    }
+    l.kind_trials[k] = atoi(eq + 1);
   }
+  for (int k = 0; k < ST_TRIAL_KIND_COUNT; k++)
+    if (l.kind_trials[k] < 0 || l.kind_trials[k] > st_trial_kind_def((stTrialKind)k)->max ||
+        l.trials < 0 || l.trials > ST_INT_MAX_TRIALS) {
+      fprintf(stderr, "csvschema: integrated trials 0..%d, each kind's up to its most\n",
+              ST_INT_MAX_TRIALS);
+      return 2;
+    }
   stFitnessCsv c;
   st_fitness_csv(&l, &c);
   return st_csv_write_header(stdout, &c.schema) ? 1 : 0;
 }
 
 int main(int argc, char **argv) {
-  if ((argc == 6 || argc == 7) && !strcmp(argv[1], "--fitness-header"))
-    return fitness_header(argv + 2, argc - 2);
+  if (argc >= 4 && !strcmp(argv[1], "--fitness-header")) return fitness_header(argv + 2, argc - 2);
   if (argc != 1) {
-    fprintf(stderr, "usage: csvschema [--fitness-header INTEGRATED TRIALS HANDOVER CHAIN_TRIALS "
-            "[VARIED]]\n");
+    fprintf(stderr, "usage: csvschema [--fitness-header INTEGRATED TRIALS [KIND=N]...]\n");
     return 2;
   }
   printf("# SPDX-License-Identifier: MIT\n"
          "# Generated by tools/csvschema.c from the library's column tables (lib/posteval/postcsv.c,\n"
-         "# lib/run/fitnesscsv.c): do not edit. After changing a table: make build/csvschema &&\n"
-         "# build/csvschema > tools/csvschema.py (tests/check_tools.sh fails while they differ).\n"
+         "# lib/run/fitnesscsv.c, the trial kinds' rows lib/episode/trials/): do not edit. After\n"
+         "# changing a table: make build/csvschema && build/csvschema > tools/csvschema.py\n"
+         "# (tests/check_tools.sh fails while they differ).\n"
          "\"\"\"The columns of the results files for the tools that read them: {name: kind} in file\n"
          "order, kinds as tools/figlib.py's read_csv takes them (\"str\" a name, never empty; \"int\";\n"
          "\"float\"; \"text\", possibly empty).\"\"\"\n");
@@ -99,19 +128,18 @@ int main(int argc, char **argv) {
          "    library's\"\"\"\n"
          "    return {n: columns[n] for n in names}\n"
          "\n\n"
-         "def fitness_columns(integrated, trials, handover=False, chain=0, varied=False):\n"
+         "def fitness_columns(integrated, trials, kinds=None):\n"
          "    \"\"\"the header of a run's fitness.csv as ./apps/evolve writes it: the integrated stage's\n"
-         "    or the primitive stages' columns, `trials` best_tI, and main-prim's hand-over trials',\n"
-         "    `chain` chained trials' and varied trials' columns\"\"\"\n"
-         "    stage = \"integrated\" if integrated else \"primitive\"\n"
-         "    count = {\"trial\": trials, \"handover\": FITNESS_HANDOVER_TRIALS, \"chain\": chain,\n"
-         "             \"varied\": FITNESS_VARIED_TRIALS}\n"
-         "    has = {\"handover\": handover, \"chain\": chain, \"varied\": varied}\n"
+         "    columns with `trials` best_tI, or the primitive stages' with `trials` fixed trials and\n"
+         "    kinds = {kind: trials} of its other kinds of trials (TRIAL_KINDS)\"\"\"\n"
+         "    runs = \"integrated\" if integrated else \"primitive\"\n"
+         "    count = dict(kinds or {}, fixed=trials)\n"
          "    out = []\n"
-         "    for name, runs in FITNESS_IN.items():\n"
-         "        if stage not in runs or any(part in runs and not on for part, on in has.items()):\n"
+         "    for name, have, kind, per_trial in FITNESS_COLUMNS:\n"
+         "        n = count.get(kind, 0) if kind else trials if per_trial else 1\n"
+         "        if runs not in have or n == 0:\n"
          "            continue\n"
-         "        out += [name %% t for t in range(count[FITNESS_PER[name]])] if name in FITNESS_PER else [name]\n"
+         "        out += [name %% t for t in range(n)] if per_trial else [name]\n"
          "    return out\n");
   return ferror(stdout) ? 1 : 0;
 }

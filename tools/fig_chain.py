@@ -31,8 +31,8 @@ import figlib  # noqa: E402
 
 figlib.PROG = "fig_chain"
 T, H, C, V = csvschema.pick(csvschema.FITNESS, "best_t%d", "best_h%d", "best_c%d", "best_v%d")
-NFIXED = csvschema.FITNESS_PRIMITIVE_TRIALS
-NHAND = csvschema.FITNESS_HANDOVER_TRIALS
+NFIXED = csvschema.TRIAL_KINDS["fixed"]
+NHAND = csvschema.TRIAL_KINDS["handover"]
 NPOST = NHAND // 3  # hand-over trials per primitive: open, grasp, move in that order
 WHAT = "a chain-stage run's fitness.csv (main-prim with stage.handover and stage.chain_trials)"
 THESIS_MEDIAN = 25 / 40  # Fig. 3.3: the median genotype succeeded in 25 of its 40 trials

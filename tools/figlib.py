@@ -80,7 +80,8 @@ KINDS = {"int": (_int, "an integer"), "count": (lambda v: _int(v, 0), "an intege
 
 # fitness.csv's columns, csvschema's kinds made stricter where the meaning says so: a trial's
 # column is 0 or 1, generations and counts are >= 0
-FITNESS = {n: ("bit" if n in csvschema.FITNESS_PER else
+_PER_TRIAL = {name for name, _, _, per_trial in csvschema.FITNESS_COLUMNS if per_trial}
+FITNESS = {n: ("bit" if n in _PER_TRIAL else
                "count" if k == "int" else k) for n, k in csvschema.FITNESS.items()}
 FITNESS_WHAT = "the fitness.csv of ./apps/evolve"
 # the real columns whose writer puts nan for "none": a post-evaluation's mean steps to the target

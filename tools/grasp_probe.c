@@ -23,7 +23,7 @@
  * ball y + dy, ball top + gap) with the palm facing down, held for the whole trial; the thumb
  * turned to the opposition at once; thumb and fingers closed at full speed once the palm is
  * within 1 cm of its goal (or from --close-step).
- * Scored by the library's own trial scoring (st_trial_run_with): success = the ball still
+ * Scored by the library's own trial scoring (st_trial_run): success = the ball still
  * above the table at the end, 40 steps after its collision with the table goes off.
  * Prints one line per combination (successes, and the steps each trial lasted: 42 means the
  * ball fell within two steps of the table going) and a total. */
@@ -151,9 +151,9 @@ static int basin(const stProtocol *p, const probeOptions *o0) {
       stTrialResult r;
       char err[1024];
       stTrialSpec t;
-      const stController c = {probe_reset, probe_act, ST_NET_NIN, &n, ST_NET_NOUT, 0};
+      const stController c = {probe_reset, probe_act, ST_NET_NIN, &n, ST_NET_NOUT, 0, NULL};
       st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_GRASP * ST_NPOSTURE + k, &t);
-      const int bad = st_trial_run_with(p, &ws, &t, &c, 1, &r, basin_trace, &n, err, sizeof err);
+      const int bad = st_trial_run(p, &ws, &t, &c, 1, &r, basin_trace, &n, err, sizeof err);
       if (bad) {
 #pragma omp critical
         {
@@ -230,10 +230,10 @@ static double number(const char *opt, const char *s, double lo, double hi) {
 static int run_trial(const stProtocol *p, stWorkspace *ws, probe *n, int k, stTraceFn trace,
                      stTrialResult *r) {
   char err[1024];
-  const stController c = {probe_reset, probe_act, ST_NET_NIN, n, ST_NET_NOUT, 0};
+  const stController c = {probe_reset, probe_act, ST_NET_NIN, n, ST_NET_NOUT, 0, NULL};
   stTrialSpec t;
   st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_GRASP * ST_NPOSTURE + k, &t);
-  if (st_trial_run_with(p, ws, &t, &c, 1, r, trace, NULL, err, sizeof err)) {
+  if (st_trial_run(p, ws, &t, &c, 1, r, trace, NULL, err, sizeof err)) {
     fprintf(stderr, "grasp_probe: %s\n", err);
     return 1;
   }

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """replicate_report.py: report.md of a replication (tools/replicate.mk), each of the thesis's
-numbers (data/thesis/results.json) beside ours.
+numbers (data/thesis/results.json) beside ours, and how its runs depart from the thesis's
+protocol (their config.ini's keys away from their defaults: tools/keytable.py).
 
     replicate_report.py OUT [--preset NAME] [--runs N] [--protocol chain|thesis]
                         [--prim-runs 'DIR ...' [--chain-runs 'DIR ...']] [-o report.md]
@@ -21,6 +22,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import csvschema  # noqa: E402
 import figlib  # noqa: E402
+import keytable  # noqa: E402
 import runconfig  # noqa: E402
 
 figlib.PROG = "replicate_report"
@@ -33,7 +35,7 @@ SUMMARY = csvschema.pick(csvschema.SUMMARY, "condition", "run", "individual", "s
                          "open_jumped")
 THESIS = os.path.join(HERE, "..", "data", "thesis", "results.json")
 CONDS = [("stct", "ST-CT"), ("st", "ST"), ("ct", "CT"), ("ni", "NI")]
-NFIXED = csvschema.FITNESS_PRIMITIVE_TRIALS  # main-prim's fixed trials (the thesis's 16)
+NFIXED = csvschema.TRIAL_KINDS["fixed"]  # main-prim's fixed trials (the thesis's 16)
 # what the primitive runs are (tools/replicate.mk's PROTOCOL), said at the top of the report
 PROTOCOLS = {
     "chain": "Primitives: protocol `chain` (the default): each primitive run of the thesis's "
@@ -137,6 +139,33 @@ def run_files(out, pattern, given):
     if given:
         return [os.path.join(d, "fitness.csv") for d in given]
     return sorted(glob.glob(os.path.join(out, pattern, "fitness.csv")))
+
+
+def section_departures(out, given):
+    """how the runs depart from the thesis's protocol: the keys of each run's config.ini away
+    from their defaults (keytable.departures; the "run" tier, a run's own seed, stage,
+    populations and condition, left out), runs with the same departures on one line"""
+    dirs = given + sorted(d for d in glob.glob(os.path.join(out, "*")) if os.path.isdir(d))
+    dirs += sorted(glob.glob(os.path.join(out, "posteval", "*")))
+    groups = {}
+    for d in dirs:
+        path = os.path.join(d, "config.ini")
+        if os.path.isfile(path):
+            found = tuple(keytable.departures(path))
+            groups.setdefault(found, []).append(os.path.relpath(d, out) if d.startswith(out) else d)
+    lines = ["## How the runs depart from the thesis's protocol", "",
+             "Each run's `config.ini` keys away from their defaults, by tier (`--help-config`; "
+             "`speed` keys give the same results). Seeds, stages, starting populations and the "
+             "condition (tier `run`) are each run's own and not listed.", "",
+             "| runs | tier | key | value | default |", "|---|---|---|---|---|"]
+    for found, runs in sorted(groups.items(), key=lambda g: g[1][0]):
+        label = ", ".join("`%s`" % r for r in runs)
+        if not found:
+            lines.append("| %s | | (none) | | |" % label)
+        for i, (tier, key, value, default) in enumerate(found):
+            lines.append("| %s | %s | `%s` | %s | %s |" % (label if i == 0 else "", tier, key,
+                                                           value, default))
+    return lines + [""]
 
 
 def section_prims(out, th, given):
@@ -458,6 +487,7 @@ def main():
         lines += ["**A quick look, not a replication:** the `%s` preset caps the generations and "
                   "shrinks the post-evaluations, so its numbers are not comparable with the "
                   "thesis's." % a.preset, ""]
+    lines += section_departures(a.out, given_prims + given_chains)
     lines += section_prims(a.out, th, given_prims)
     if a.protocol == "chain":
         lines += section_chain(a.out, given_chains)

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """What a run gave, for the end of `make run`: when each stage was completed, what the final best
-solves, the files and what each holds, and a PNG plot of the run's fitness written next to them
-(with the command that redraws it).
+solves, how the run departs from the thesis's protocol (its config.ini's keys away from their
+defaults, tier by tier: tools/keytable.py), the files and what each holds, and a PNG plot of the
+run's fitness written next to them (with the command that redraws it).
 
     /usr/bin/python3 tools/run_report.py RUN_DIR [--no-plot]
 
@@ -18,6 +19,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
 import figlib  # noqa: E402
+import keytable  # noqa: E402
 import runconfig  # noqa: E402
 from plot_fitness import PRIMS  # noqa: E402
 from runs_summary import success_genotypes  # noqa: E402
@@ -89,6 +91,24 @@ def protocol_line(d):
     return f"reach starts {starts} (postures.reach_palm_down); contact {contact}"
 
 
+def departure_lines(run_dir):
+    """how the run departs from the thesis's protocol, one line per tier (keytable.departures of
+    its config.ini); nothing without a config.ini"""
+    path = os.path.join(run_dir, "config.ini")
+    if not os.path.exists(path):
+        return []
+    found = keytable.departures(path)
+    if not found:
+        return ["the thesis's protocol: no key away from it (config.ini)"]
+    lines = ["how it departs from the thesis's protocol (config.ini, each key's default after it):"]
+    for tier in keytable.TIERS:
+        keys = [f"{k} = {v} ({d})" for t, k, v, d in found if t == tier]
+        if keys:
+            what = " (the same results)" if tier == "speed" else ""
+            lines.append(f"  {tier}{what}: " + ", ".join(keys))
+    return lines
+
+
 def plot(csv_path, png):
     """draws the PNG with this interpreter; returns the command, and an error or None"""
     cmd = [sys.executable, "tools/plot_fitness.py", csv_path, "-o", png]
@@ -110,6 +130,8 @@ def main():
     for line in stage_lines(rows, need):
         print(f"  {line}")
     print(f"  {best_line(rows[-1])}")
+    for line in departure_lines(d):
+        print(f"  {line}")
     print(f"  files in {d}/:")
     for name, what in FILES:
         if os.path.exists(f"{d}/{name}"):

@@ -53,7 +53,7 @@ KEYS_handover_chain_gated_mut := $(KEYS_handover_chain_gated) --set ga.mutation_
 # grasp's partly extended starts (k=2,3) flexed as open's end leaves the hand in the chains that
 # break (0.4, the largest the posture check accepts): whether grasp learns to close on the ball
 # from there; it replaces two of the thesis's starts, so a result would be replayed on the 16
-# fixed trials and, if it helps, built as extra trials (docs/PROTOCOL.md, "More exploration")
+# fixed trials and, if it helps, built as extra trials (docs/notebook/chain_stage.md, "More exploration")
 KEYS_handover_chain_gated_flex := $(KEYS_handover_chain_gated) --set postures.grasp_partial_flex=0.4
 # and 6 cm up (all four grasp starts): high and partly flexed at once, as the chains hand over
 KEYS_handover_chain_gated_highflex := $(KEYS_handover_chain_gated_flex) --set postures.grasp_gap=0.06

@@ -21,6 +21,22 @@ extern "C" {
 
 #define ST_CONFIG_STR_MAX 256
 
+/* What a key is: its tier (st_config_key_tier, from ST_CONFIG_TIERS below the table).
+ * --help-config and config.ini group the keys by tier, and a run's keys away from their
+ * defaults in every tier but RUN are how it departs from the thesis's protocol
+ * (tools/run_report.py, tools/replicate_report.py's report.md). */
+typedef enum stConfigTier {
+  ST_TIER_PROTOCOL = 0, /* the thesis's protocol, and our decision where it leaves one open
+                           (docs/PROTOCOL.md): the defaults are that protocol */
+  ST_TIER_RUN,          /* what one run of the protocol is: its seed, stages, starting
+                           populations, condition (Table 2.1); runs differ in them within it */
+  ST_TIER_EXTENSION,    /* ours, not the thesis's (the chain stage's trials, palm-down and drawn
+                           starts): off at their defaults */
+  ST_TIER_DIAGNOSTIC,   /* for looking into a result, not for results */
+  ST_TIER_SPEED,        /* how fast, not what: the same results, or the same up to rounding */
+  ST_TIER_COUNT
+} stConfigTier;
+
 /* The key table. Each row: section, key, default, then
  *   INT / REAL: min, max, help     BOOL: help
  *   ENUM: choices "a|b|c" (the field holds the index), help     STR: help */
@@ -168,6 +184,12 @@ extern "C" {
   REAL(postures, vary_wrist_pitch, -45.0, -90.0, 0.0, "vary_starts: the IK start's wrist pitch is uniform between ik_wrist_pitch and this, deg") \
   BOOL(postures, vary_open_high, 0, "vary_starts: open's drawn starts at k=0,1 are built as k=2,3's (palm a few cm above the ball, hand almost closed): open earns its success everywhere (PROTOCOL.md)") \
   INT(postures, vary_draws, 20, 1, 1000, "vary_starts: draws per trial until one has the SPEC 8 properties; when none has, the trial starts from the fixed posture") \
+  ST_CONFIG_DYNAMICS_KEYS(INT, REAL, BOOL, ENUM, STR)                                             \
+  ST__CONFIG_POSTEVAL_KEYS(INT, REAL, BOOL, ENUM, STR)
+
+/* The [dynamics] keys, a block of the table of their own: the dynamic world's definition
+ * (stDynDef, selftalk/world.h) is generated from it, field by key. */
+#define ST_CONFIG_DYNAMICS_KEYS(INT, REAL, BOOL, ENUM, STR)                                      \
   ENUM(dynamics, solver, 1, "quickstep|step", "ODE stepper: quickstep (iterative; its constraint shuffling uses a per-thread generator seeded per trial) or step (direct, slower)") \
   REAL(dynamics, substep, 0.01, 0.0005, 0.05, "physics sub-step, s (control step / substep must be an integer)") \
   INT(dynamics, iterations, 20, 1, 1000, "quickstep solver iterations per sub-step") \
@@ -196,7 +218,9 @@ extern "C" {
   STR(dynamics, adaptive_joints, "", "the hinges after kinematic_joints, in chain order, that are exact servos while the torque they need stays within adaptive_limit of theirs, else motors (PROTOCOL, Speed); empty: none") \
   REAL(dynamics, adaptive_limit, 0.5, 0.01, 1.0, "adaptive_joints: an exact servo needing more than this times its motor's torque limit becomes a motor again, and a servo again below half of it") \
   ENUM(dynamics, lcp, 0, "dense|schur", "solver step: dense, ODE's Dantzig on the whole LCP; schur, the joints' unbounded rows eliminated first (sparse), ODE's on the rest: the same solution up to rounding (PROTOCOL, Speed)") \
-  /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */ \
+  /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */
+
+#define ST__CONFIG_POSTEVAL_KEYS(INT, REAL, BOOL, ENUM, STR)                                     \
   INT(posteval, integration_top, 10, 1, 100000, "integration test: genotypes taken from the top of each primitive run's population (thesis 2.10.1: the top 10)") \
   INT(posteval, integration_trials, 40, 1, 100000, "integration test: caretaker-guided trials per genotype; trial i has type k = i mod 4: reach posture k, object position k, target k mod 2, fresh offsets (thesis 2.10.1)") \
   INT(posteval, robustness_trials, 40, 1, 100000, "robustness test: autonomous trials per individual, types as the integration test's (thesis 2.10.2)") \
@@ -208,6 +232,26 @@ extern "C" {
   REAL(posteval, generalisation_target_x, 0.25, -2.0, 2.0, "generalisation test: target x, m, the same in every trial (no offset), between T0 and T1") \
   REAL(posteval, generalisation_target_y, 0.0, -2.0, 2.0, "generalisation test: target y, m (0: between T0 and T1)") \
   REAL(posteval, generalisation_target_z, 0.17, -2.0, 2.0, "generalisation test: target z, m (25 cm above the table)")
+
+/* The fence (MuJoCo lists its experimental flags apart, under "experimental"): every key that
+ * is not the thesis's protocol, by tier; a key not named here is ST_TIER_PROTOCOL. Each entry:
+ * tier, section, key or "prefix_*" (every key of the section whose name starts with prefix_).
+ * tests/test_config.c checks that each entry names keys of the table. */
+#define ST_CONFIG_TIERS(X)                                                                       \
+  /* what one run is within the protocol: seed, stages, starting populations, condition */       \
+  X(RUN, "run", "seed") X(RUN, "network", "arch") X(RUN, "stage", "stages")                       \
+  X(RUN, "stage", "init_population") X(RUN, "integrated", "populations")                          \
+  X(RUN, "integrated", "words_*") X(RUN, "integrated", "fitness_*")                               \
+  X(RUN, "integrated", "first_generation")                                                        \
+  /* ours: the chain stage's hand-over, chained and varied trials, drawn and palm-down starts */ \
+  X(EXTENSION, "stage", "handover*") X(EXTENSION, "stage", "chain_*")                             \
+  X(EXTENSION, "postures", "vary_*") X(EXTENSION, "postures", "reach_palm_down")                  \
+  /* for looking into a result */                                                                 \
+  X(DIAGNOSTIC, "stage", "primitives") X(DIAGNOSTIC, "integrated", "selftalk_gate")               \
+  /* how fast, not what */                                                                        \
+  X(SPEED, "run", "threads") X(SPEED, "dynamics", "free_motion")                                  \
+  X(SPEED, "dynamics", "contact_margin") X(SPEED, "dynamics", "motor_active_set")                 \
+  X(SPEED, "dynamics", "adaptive_*") X(SPEED, "dynamics", "lcp")
 
 /* The configuration: one field per key, named section_key. */
 #define ST__CFG_INT(s, k, d, lo, hi, h) int s##_##k;
@@ -246,6 +290,13 @@ typedef struct stConfigKey {
   size_t offset;       /* of the field in stConfig */
 } stConfigKey;
 
+/* The tier of key i (0 <= i < st_config_nkeys()): the fence's (ST_CONFIG_TIERS), else
+ * ST_TIER_PROTOCOL. */
+stConfigTier st_config_key_tier(int i);
+
+/* "protocol", "run", "extension", "diagnostic", "speed"; "?" for anything else. */
+const char *st_config_tier_name(stConfigTier tier);
+
 /* Number of keys and key i (0 <= i < st_config_nkeys()). */
 int st_config_nkeys(void);
 const stConfigKey *st_config_key(int i);
@@ -269,6 +320,11 @@ void st_config_default(stConfig *cfg);
  * line. */
 stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz);
 
+/* The line of config file `path` that sets key i ("name = value" under its section), 0 when
+ * none does or the file cannot be read: where a check made after st_config_load (a layer
+ * above core: selftalk/trialkind.h) finds the key it blames. */
+int st_config_key_line(const char *path, int i);
+
 /* Applies one "section.key=value" override and checks the cross-key rules. */
 stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz);
 
@@ -280,10 +336,11 @@ stStatus st_config_set_all(stConfig *cfg, const char *const *assignments, int n,
 /* Checks ranges and cross-key consistency of a config built in code. */
 stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz);
 
-/* Writes the config as a loadable INI file, every key with its help as a comment. */
+/* Writes the config as a loadable INI file, every key with its help as a comment; in each
+ * section the keys by tier, each tier's under a comment naming it. */
 int st_config_write(FILE *f, const stConfig *cfg);
 
-/* Writes the key reference (section, key, type, default, range, help). */
+/* Writes the key reference (section, key, type, default, range, help), tier by tier. */
 void st_config_help(FILE *f);
 
 /* Primitives named by stage.primitives, as a bit mask: bit p set for primitive p in the order
@@ -314,9 +371,9 @@ enum { ST_VARY_REPLACE = 0, ST_VARY_EXTRA };
 const char *st_config_enum_name(const char *section, const char *name, int value);
 
 /* Checks value against the range of the INT or REAL key section.name (the table is the one
- * place ranges live): ST_OK, or ST_ERR_RANGE with "section.name: V is out of range (expected
- * ...)". Code that builds its definitions without a stConfig (the GA, the dynamic world) checks
- * the fields that are keys with this. */
+ * place ranges live), or a BOOL's 0 and 1, or an ENUM's choice indices: ST_OK, or ST_ERR_RANGE
+ * with "section.name: V is out of range (expected ...)". Code that builds its definitions
+ * without a stConfig (the GA, the dynamic world) checks the fields that are keys with this. */
 stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
                                 size_t errsz);
 

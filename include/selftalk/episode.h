@@ -117,6 +117,9 @@ typedef struct stController {
   int noutputs; /* outputs act() writes; 0 means 13 */
   int talks;    /* 1: outputs 13-16 are linguistic outputs (type A) whose argmax is the label
                    the controller produces each step (self talk) */
+  /* nullable: told before each act() what the robot hears this step (the words' source, the
+   * word, -1 none) and, with hand-over words, the step it was handed over at (-1 before) */
+  void (*hear)(void *self, stWordSource source, int word, int handover);
 } stController;
 
 /* One network output forced to a value from a step on, whatever the network says: override
@@ -140,6 +143,23 @@ typedef struct stNetController {
  * Nullable: force (nforce 0). c must outlive the returned controller. */
 stController st_net_controller(stNetController *c, const stNetParams *net, const stForce *force,
                                int nforce);
+
+/* Two controllers as one, for main-prim's hand-over trials under stage.handover_rollin = elite
+ * (docs/PROTOCOL.md): `rollin` acts while hand-over words have not handed over yet, `then` from
+ * the hand-over step on and in any other episode (a hand-over trial's fallback); both are reset
+ * at the start of an episode, only the one acting is stepped. So `then`'s first step is the
+ * hand-over step, with no state from the steps before: exact only for controllers without
+ * memory (the base network: its outputs at t depend on its inputs at t alone), which the
+ * caller ensures; what can be seen is checked: ST_ERR_ARG unless both have the base network's
+ * 25 inputs and 13 outputs and neither talks. Both must outlive c, and c the composed *out. */
+typedef struct stRollinController {
+  stController rollin, then;
+  int rolling; /* the roll-in acts this step */
+} stRollinController;
+
+stStatus st_rollin_controller(stRollinController *c, const stController *rollin,
+                              const stController *then, stController *out, char *err,
+                              size_t errsz);
 
 /* Checks forced outputs: ST_ERR_RANGE naming an output, value or step out of range. */
 stStatus st_force_check(const stForce *force, int nforce, char *err, size_t errsz);
@@ -203,27 +223,12 @@ typedef struct stScorer {
 } stScorer;
 
 /* Runs one episode: reset the world and the controller, then for each step: the word source
- * speaks (on the state before the action), sense, think, act, score the state the action
- * produced. Nullable: trace. ST_ERR_ARG when self talk is asked of a controller that does not
- * talk, or the controller's outputs do not fit. */
+ * speaks (on the state before the action; the controller hears it), sense, think, act, score
+ * the state the action produced. Nullable: trace. ST_ERR_ARG when self talk is asked of a
+ * controller that does not talk, or the controller's outputs do not fit. */
 stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
                         const stController *ctl, const stWords *words, const stScorer *scorer,
                         stTraceFn trace, void *ctx, char *err, size_t errsz);
-
-/* st_episode_run with two actors (main-prim's hand-over trials under
- * stage.handover_rollin = elite, docs/PROTOCOL.md): with ST_WORDS_HANDOVER, `rollin` acts every
- * step before the hand-over (the step at which the word first reaches words->word) and ctl
- * from that step on; both are reset at the start and only the one acting is stepped. So ctl's
- * first step is the hand-over step, with no state from the steps before: this is exact only
- * for controllers without memory (the base network: its outputs at t depend on its inputs at t
- * alone), which the caller must ensure (st_trial_run_rollin takes base networks only); the
- * loop checks what it can see: both controllers with the base network's 25 inputs and 13
- * outputs, neither talking. Nullable: rollin (then exactly st_episode_run). ST_ERR_ARG for a
- * rollin with another word source or another shape. */
-stStatus st_episode_run_rollin(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
-                               const stController *ctl, const stController *rollin,
-                               const stWords *words, const stScorer *scorer, stTraceFn trace,
-                               void *ctx, char *err, size_t errsz);
 
 /* The label of four linguistic values: their argmax (ties: lowest index). */
 int st_episode_label(const double *ling4);

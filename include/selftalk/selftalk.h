@@ -34,6 +34,7 @@
 #include "selftalk/scripted.h"
 #include "selftalk/sensors.h"
 #include "selftalk/trial.h"
+#include "selftalk/trialkind.h"
 #include "selftalk/world.h"
 
 #endif

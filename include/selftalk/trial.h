@@ -11,33 +11,21 @@
 #include <stdint.h>
 
 #include "selftalk/episode.h"
+#include "selftalk/trialkind.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define ST_PRIM_TRIALS (ST_NPRIM * ST_NPOSTURE) /* trials of a primitive stage: 16 */
-/* main-prim's hand-over trials (stage.handover, not the thesis's protocol): open, grasp and
- * move from each reach posture k, indices ST_PRIM_TRIALS + 4 (primitive - 1) + k */
-#define ST_HANDOVER_TRIALS 12
-/* main-prim's varied trials (postures.vary_trials = extra, not the thesis's protocol): open and
- * grasp from drawn starts beside their fixed trials, indices ST_VARIED_FIRST + 4 (primitive - 1)
- * + k */
-#define ST_VARIED_TRIALS 8
-#define ST_VARIED_FIRST (ST_PRIM_TRIALS + ST_HANDOVER_TRIALS)
-#define ST_MAIN_TRIALS_MAX (ST_VARIED_FIRST + ST_VARIED_TRIALS)
-
-/* What a trial index of a primitive stage is: one of the thesis's 16, a hand-over trial or a
- * varied trial (the ranges above, in one place) */
-typedef enum stTrialKind { ST_TRIAL_FIXED = 0, ST_TRIAL_HANDOVER, ST_TRIAL_VARIED } stTrialKind;
-stTrialKind st_trial_kind(int index);
 
 /* One trial, fully specified. */
 typedef struct stTrialSpec {
   stStage stage;
-  int index;          /* fixed trials (st_trial_kind): primitive index / 4, posture and
-                         object position index % 4; hand-over and varied trials: open, grasp
-                         (and move) by fours from ST_PRIM_TRIALS and ST_VARIED_FIRST */
+  int index;          /* the trial index of the stage (selftalk/trialkind.h: the indexed kinds'
+                         ranges one after another) */
+  stTrialKind kind;   /* st_trial_kind(index) */
+  int j;              /* trial j of its kind: index - st_trial_kind_first(kind) */
   int generation;
   int primitive;
   int k;              /* posture and object position */
@@ -49,11 +37,11 @@ typedef struct stTrialSpec {
   int table_off_step; /* main-prim grasp / move: object-table collision off from this step; -1 */
   int start_draws;    /* postures.vary_starts: the draw qhat0 is (1..postures.vary_draws); 0:
                          the fixed posture (not varied, or no draw had the SPEC 8 properties) */
-  int handover;       /* a hand-over trial: qhat0 is reach posture k, the object has the reach
-                         trials' offset; the caretaker's chain runs (unscored) until it hands
-                         over to `primitive`, which is then scored for `steps` steps as its own
-                         trial (table_off_step counted from the hand-over) */
-  int rollin_steps;   /* hand-over trials: the chain must hand over before this step */
+  int rollin_steps;   /* hand-over trials (qhat0 reach posture k, the object with the reach
+                         trials' offset): the caretaker's chain runs, unscored, until it hands
+                         over to `primitive`, which must happen before this step; the primitive
+                         is then scored for `steps` steps as its own trial (table_off_step
+                         counted from the hand-over). 0 for other trials */
 } stTrialSpec;
 
 /* Trial `index` of a stage in a generation (offsets from the counter-based generator; with
@@ -86,32 +74,28 @@ void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialT
 void st_handover_fallback(const stProtocol *p, const stTrialSpec *handover, stTrialSpec *t);
 
 /* The key of the dynamic solver's generator for trial `index` of a generation run by
- * `individual` (stream ST_RNG_TRIAL, hand-over trials ST_RNG_HANDOVER_SOLVER). With
- * stage.handover_rollin = elite a hand-over trial takes individual 0's key (the elite's)
- * whoever runs it, so that every individual's roll-in is the elite's, bit for bit. */
+ * `individual` (its kind's seed_key: fixed and varied trials ST_RNG_TRIAL, hand-over trials
+ * ST_RNG_HANDOVER_SOLVER). With stage.handover_rollin = elite a hand-over trial takes individual
+ * 0's key (the elite's) whoever runs it, so that every individual's roll-in is the elite's, bit
+ * for bit. */
 uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index);
 
-/* The trial indices of a stage: 16; in main-prim 28 with stage.handover, 36 with
- * postures.vary_trials = extra (st_stage_trial_active says which of them run). */
+/* The trial indices of a stage: up to the last indexed kind it has trials of (16; in main-prim
+ * 28 with stage.handover, 36 with postures.vary_trials = extra; st_stage_trial_active says which
+ * of them run). */
 int st_stage_trials(const stProtocol *p, stStage stage);
-
-/* 1 when an evaluation of `stage` has the varied trials (main-prim, postures.vary_starts and
- * postures.vary_trials = extra), i.e. its fitness.csv has their columns; in the generations
- * st_vary_replacing names they do not run. */
-int st_stage_varied(const stConfig *cfg, stStage stage);
 
 /* 1 when the open and grasp fixed trials of `generation` start from drawn postures instead of
  * theirs: postures.vary_starts with vary_trials = replace, or with extra in the first
- * postures.vary_replace_generations generations. */
+ * postures.vary_replace_generations generations (the varied kind's rule,
+ * lib/episode/trials/varied.c). */
 int st_vary_replacing(const stConfig *cfg, int generation);
 
 /* 1 when an evaluation of `stage` in `generation` runs trial `index` (< st_stage_trials): its
- * primitive is one p->primitives evaluates, and it is a fixed trial, a hand-over trial with
- * stage.handover or a varied trial with postures.vary_trials = extra outside the generations
- * of postures.vary_replace_generations. */
+ * primitive is one p->primitives evaluates, and its kind runs then (st_trial_kind_runs). */
 int st_stage_trial_active(const stProtocol *p, stStage stage, int generation, int index);
 
-/* The primitive of trial `index` of a stage (fixed, hand-over or varied). */
+/* The primitive of trial `index` of a stage. */
 int st_trial_primitive(int index);
 
 /* The episode of a trial: its spec (kinematic in simple-prim, dynamic in main-prim; seed_key
@@ -176,103 +160,55 @@ typedef struct stPrimScorer {
 stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
                         stTrialResult *r);
 
-/* A primitive trial driven by any controller (e.g. the scripted one): st_trial_episode, the
- * primitive scorer, st_episode_run. A hand-over trial whose roll-in did not hand over scores
- * nothing, or with stage.handover_fallback runs its fallback next (the trace sees the
- * roll-in's steps, then the fallback's from step 0). Nullable: trace. */
-stStatus st_trial_run_with(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                           const stController *ctl, uint64_t seed_key, stTrialResult *r,
-                           stTraceFn trace, void *ctx, char *err, size_t errsz);
-
-/* st_trial_run_forced with the roll-in of a hand-over trial acted by another network
- * (stage.handover_rollin = elite: the generation's elite, genotype 0): `rollin` acts the steps
- * before the hand-over, net (with its forced outputs) the steps from it on
- * (st_episode_run_rollin); a fallback trial is net's alone. Nullable: rollin (then exactly
- * st_trial_run_forced). ST_ERR_ARG when rollin is given for a trial that is not a hand-over
- * trial, or either network is not the base network (only a network without memory can take
- * over mid-trial). */
-stStatus st_trial_run_rollin(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                             const stNetParams *net, const stNetParams *rollin,
-                             const stForce *force, int nforce, uint64_t seed_key, stTrialResult *r,
-                             stTraceFn trace, void *ctx, char *err, size_t errsz);
-
-/* Runs one trial with a network. seed_key keys the dynamic solver's generator (unused in
- * kinematic mode). Nullable: trace. */
+/* Runs one trial: st_trial_episode, the primitive scorer (its kind's score hook), st_episode_run
+ * with ctl (any controller: a network's, st_net_controller, with forced outputs or not; one
+ * composed with a roll-in, st_rollin_controller; the scripted one), then its kind's finish hook
+ * (a hand-over trial whose roll-in did not hand over scores nothing, or with
+ * stage.handover_fallback runs its fallback next: the trace sees the roll-in's steps, then the
+ * fallback's from step 0). seed_key keys the dynamic solver's generator (unused in kinematic
+ * mode). Nullable: trace. */
 stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                      const stNetParams *net, uint64_t seed_key, stTrialResult *r, stTraceFn trace,
-                      void *ctx, char *err, size_t errsz);
-
-/* st_trial_run with nforce outputs forced (nforce = 0: exactly st_trial_run). Forces are
- * applied in order, so a later one on the same output wins from its step on. ST_ERR_RANGE for
- * an output, value or step out of range, naming it. */
-stStatus st_trial_run_forced(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
-                             const stNetParams *net, const stForce *force, int nforce,
-                             uint64_t seed_key, stTrialResult *r, stTraceFn trace, void *ctx,
-                             char *err, size_t errsz);
-
-#define ST_CHAIN_TRIALS_MAX 32 /* stage.chain_trials at most */
+                      const stController *ctl, uint64_t seed_key, stTrialResult *r,
+                      stTraceFn trace, void *ctx, char *err, size_t errsz);
 
 /* An individual's score over all trials of a stage. */
 typedef struct stEvaluation {
-  double fitness;              /* harmonic mean of fp over the evaluated primitives (and
-                                  f_chain with stage.chain_trials) */
+  double fitness;              /* harmonic mean of fp over the evaluated primitives, with the
+                                  kinds' terms (stTrialKindDef.fitness: F_chain) */
   double fp[ST_NPRIM];         /* F_p (0 for a primitive not evaluated) */
-  int ntrials;                 /* trials evaluated: 16 unless stage.primitives names fewer;
-                                  main-prim's hand-over, varied and chained trials too */
-  int successes;               /* trials succeeded (hand-over trials included) */
-  uint8_t success[ST_PRIM_TRIALS]; /* the fixed trials */
-  int fixed_drawn;             /* ... of them started from a drawn posture (st_vary_replacing) */
-  int unstable;                /* trials that diverged */
-  int handover_trials;         /* hand-over trials evaluated (0: stage.handover off) */
-  int handover_successes;      /* ... succeeded */
-  int handovers;               /* ... whose roll-in handed over (the rest ran the fallback) */
-  uint8_t handover_success[ST_HANDOVER_TRIALS];
-  int varied_trials;           /* varied trials evaluated (0: postures.vary_trials = replace) */
-  int varied_successes;        /* ... succeeded */
-  uint8_t varied_success[ST_VARIED_TRIALS];
-  int chain_trials;            /* chained trials evaluated (stage.chain_trials in main-prim) */
-  int chain_successes;         /* ... whose object reached the target and stayed lifted */
-  double f_chain;              /* their eq. 2.14 fitness: B + scale / N sum max(0, S - P) */
-  uint8_t chain_success[ST_CHAIN_TRIALS_MAX];
+  int ntrials;                 /* trials evaluated, every kind's: 16 unless stage.primitives
+                                  names fewer, and main-prim's hand-over, varied and chained */
+  int successes;               /* ... succeeded */
+  int unstable;                /* ... diverged */
+  stKindEvaluation kind[ST_TRIAL_KIND_COUNT]; /* each kind's (selftalk/trialkind.h) */
 } stEvaluation;
 
-/* Evaluates a network on the 16 trials of a stage in a generation (only those of the
- * primitives in p->primitives; a trial keeps its index, offsets and generator key, so a subset
- * scores each trial exactly as the full set does), then, in main-prim with stage.handover, its
- * 12 hand-over trials and, with postures.vary_trials = extra, its 8 varied trials: each counts
+/* Evaluates a network on the trials of a stage in a generation: the indexed kinds' trials in
+ * index order (only those of the primitives in p->primitives; a trial keeps its index, offsets
+ * and generator key, so a subset scores each trial exactly as the full set does), each counting
  * in its primitive's F_p as one more trial (eq. 2.3: its bonus, its S - P over its length);
- * and, with stage.chain_trials, that many chained trials (st_chain_def: the integrated stage's
- * trials with the caretaker's words), whose eq. 2.14
- * fitness is one more term of the harmonic mean. individual keys the dynamic solver's
- * generator. */
+ * then the block kinds (stage.chain_trials chained trials, st_chain_def: the integrated stage's
+ * trials with the caretaker's words), whose terms join the fitness (their fitness hooks).
+ * individual keys the dynamic solver's generator. rollin: the base network of the
+ * generation's elite (genotype 0), which acts main-prim's hand-over trials' roll-ins
+ * (st_rollin_controller) exactly when st_stage_rollin_elite says so; NULL otherwise.
+ * ST_ERR_ARG naming stage.handover_rollin when rollin is missing where it is needed or given
+ * where it is not, or the networks cannot take over from each other (not base networks). */
 stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
-                           int individual, const stNetParams *net, stEvaluation *e, char *err,
-                           size_t errsz);
+                           int individual, const stNetParams *net, const stNetParams *rollin,
+                           stEvaluation *e, char *err, size_t errsz);
 
 /* 1 when an evaluation counts towards ga.success_genotypes (the primitive stages' completion):
  * it solved every trial it was evaluated on, or, with stage.chain_complete = fixed_chained and
- * chained trials, its fixed trials from their fixed starts (fixed_drawn 0) and its chained
- * trials (the hand-over and varied trials train the chain; the fixed ones are the thesis's, the
+ * chained trials, its fixed trials from their fixed starts (none drawn) and its chained trials
+ * (the hand-over and varied trials train the chain; the fixed ones are the thesis's, the
  * chained ones the integration test's). */
 int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e);
 
-/* The fixed trials an evaluation ran (the thesis's 16 in main-prim): its trials less the
- * hand-over, varied and chained ones, which the chain stage adds beside them. */
-int st_evaluation_fixed_trials(const stEvaluation *e);
-
 /* 1 when an evaluation of `stage` has hand-over trials rolled in by the elite (main-prim,
- * stage.handover, stage.handover_rollin = elite): st_stage_evaluate_rollin then needs the
- * elite's network. */
+ * stage.handover, stage.handover_rollin = elite): st_stage_evaluate then needs the elite's
+ * network. */
 int st_stage_rollin_elite(const stProtocol *p, stStage stage);
-
-/* st_stage_evaluate with the hand-over trials' roll-in acted by `rollin`, the base network of
- * the generation's elite (genotype 0), when st_stage_rollin_elite says so; NULL otherwise.
- * ST_ERR_ARG naming stage.handover_rollin when rollin is missing where it is needed or given
- * where it is not. */
-stStatus st_stage_evaluate_rollin(const stProtocol *p, stWorkspace *ws, stStage stage,
-                                  int generation, int individual, const stNetParams *net,
-                                  const stNetParams *rollin, stEvaluation *e, char *err,
-                                  size_t errsz);
 
 #ifdef __cplusplus
 }

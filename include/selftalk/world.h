@@ -127,42 +127,25 @@ const char *st_shape_kind_name(int kind);
 enum { ST_DYN_QUICKSTEP = 0, ST_DYN_STEP, ST_DYN_SOLVER_COUNT }; /* dynamics.solver */
 enum { ST_DYN_LCP_DENSE = 0, ST_DYN_LCP_SCHUR, ST_DYN_LCP_COUNT };  /* dynamics.lcp */
 
-/* dynamics.adaptive_limit's default (the key table's), the only value it takes while
- * dynamics.adaptive_joints is empty */
-#define ST_DYN_ADAPTIVE_LIMIT 0.5
-
-/* The [dynamics] keys (see selftalk/config.h for their meaning and defaults). */
+/* The [dynamics] keys (selftalk/config.h, ST_CONFIG_DYNAMICS_KEYS: their meaning, defaults and
+ * ranges), one field each named as its key: solver (ST_DYN_*), substep (s; the control step
+ * must be a whole number of sub-steps), limit_tolerance_deg and stop_margin_deg (degrees),
+ * kinematic_joints and adaptive_joints (comma-separated joint names), lcp (ST_DYN_LCP_*), ... The
+ * world checks them where it consumes them, against the key table's ranges
+ * (st_config_check_number). */
+#define ST__DYN_NUM(s, k, d, lo, hi, h) double k;
+#define ST__DYN_INT(s, k, d, lo, hi, h) int k;
+#define ST__DYN_FLAG(s, k, d, h) int k;
+#define ST__DYN_ENUM(s, k, d, ch, h) int k;
+#define ST__DYN_STR(s, k, d, h) char k[ST_CONFIG_STR_MAX];
 typedef struct stDynDef {
-  int solver;                /* ST_DYN_QUICKSTEP or ST_DYN_STEP */
-  double substep;            /* s; the control step must be a whole number of sub-steps */
-  int iterations;            /* quickstep iterations per sub-step */
-  double gravity;            /* m/s^2, downwards */
-  double friction;           /* Coulomb coefficient of the robot's contacts */
-  double table_friction;     /* ... of the object on the table and the floor */
-  double erp, cfm;           /* joints (and joint stops) */
-  double contact_erp, contact_cfm; /* soft contacts */
-  double surface_layer;      /* m of allowed contact penetration */
-  double sor_w;              /* quickstep over-relaxation */
-  int max_contacts;          /* contact points per colliding geometry pair */
-  double effort_scale;       /* motor torque limit = URDF effort times this */
-  double fall_margin;        /* m (st_world_object_fell) */
-  double floor_z;            /* floor plane height (catches a dropped object), m */
-  double unstable_speed;     /* m/s of any body's centre of mass: beyond it the world is unstable */
-  double unstable_spin;      /* rad/s of any body: beyond it the world is unstable */
-  double limit_tolerance;    /* rad beyond a joint's range: beyond it the world is unstable */
-  double stop_margin;        /* rad: the joint stops sit this far outside the qhat range */
-  double fudge_factor;       /* ODE's dParamFudgeFactor of every joint */
-  int free_motion;           /* 1: the robot moves kinematically while nothing can touch it */
-  double contact_margin;     /* m: closer than this to the table or the object, the robot is in
-                                ODE's step */
-  int motor_active_set;      /* 1: unsaturated motors enter ODE's LCP unbounded, checked after */
-  char adaptive_joints[ST_CONFIG_STR_MAX]; /* comma-separated joint names after kinematic_joints:
-                                exact servos while the torque they need is within their limit */
-  double adaptive_limit;     /* ... times the motor's torque limit (ST_DYN_ADAPTIVE_LIMIT) */
-  int lcp;                   /* ST_DYN_LCP_DENSE or ST_DYN_LCP_SCHUR (solver step only) */
-  char kinematic_joints[ST_CONFIG_STR_MAX]; /* comma-separated joint names: exact servos whose
-                                links are kinematic bodies (a prefix of the chain) */
+  ST_CONFIG_DYNAMICS_KEYS(ST__DYN_INT, ST__DYN_NUM, ST__DYN_FLAG, ST__DYN_ENUM, ST__DYN_STR)
 } stDynDef;
+#undef ST__DYN_NUM
+#undef ST__DYN_INT
+#undef ST__DYN_FLAG
+#undef ST__DYN_ENUM
+#undef ST__DYN_STR
 
 /* Fills def from the [dynamics] keys. */
 void st_dyn_def_from_config(const stConfig *cfg, stDynDef *def);

@@ -32,6 +32,41 @@ static const stConfigKey g_keys[] = {ST_CONFIG_KEYS(K_INT, K_REAL, K_BOOL, K_ENU
 /* C99 static assertion: the loader's per-key line table must hold every key */
 typedef char st__keys_fit[NKEYS <= MAX_KEYS ? 1 : -1];
 
+/* the tiers' names, and what each is, for config.ini's and --help-config's headings */
+static const char *const g_tier_name[ST_TIER_COUNT] = {"protocol", "run", "extension",
+                                                       "diagnostic", "speed"};
+static const char *const g_tier_title[ST_TIER_COUNT] = {
+    "the thesis's protocol, and our decisions where it leaves one open (docs/PROTOCOL.md)",
+    "what one run is within the protocol: seed, stages, starting populations, condition",
+    "ours, not the thesis's protocol (off at their defaults)",
+    "for looking into a result, not for results",
+    "the same results (or the same up to rounding), faster"};
+
+/* the fence: the keys that are not the thesis's protocol (config.h, ST_CONFIG_TIERS) */
+static const struct {
+  stConfigTier tier;
+  const char *section, *name; /* a key, or "prefix_*" */
+} g_tier_keys[] = {
+#define ST__TIER_ROW(t, s, k) {ST_TIER_##t, s, k},
+    ST_CONFIG_TIERS(ST__TIER_ROW)
+#undef ST__TIER_ROW
+};
+
+static int name_matches(const char *pattern, const char *name);
+
+stConfigTier st_config_key_tier(int i) {
+  ST_ASSERT(i >= 0 && i < NKEYS);
+  for (size_t r = 0; r < sizeof g_tier_keys / sizeof g_tier_keys[0]; r++)
+    if (!strcmp(g_tier_keys[r].section, g_keys[i].section) &&
+        name_matches(g_tier_keys[r].name, g_keys[i].name))
+      return g_tier_keys[r].tier;
+  return ST_TIER_PROTOCOL;
+}
+
+const char *st_config_tier_name(stConfigTier tier) {
+  return (int)tier >= 0 && tier < ST_TIER_COUNT ? g_tier_name[tier] : "?";
+}
+
 int st_config_nkeys(void) { return NKEYS; }
 const stConfigKey *st_config_key(int i) { return i >= 0 && i < NKEYS ? &g_keys[i] : NULL; }
 
@@ -490,104 +525,16 @@ static int check_integrated(const stConfig *c, char *msg, size_t n) {
   return -1;
 }
 
-static int is_default(const stConfig *c, const stConfig *d, const stConfigKey *k);
-
-/* keys section.prefix* that shape what a switch key turns on: changed while it is off they
- * would do nothing; returns the key blamed or -1 */
-static int check_switched(const stConfig *c, int on, const char *section, const char *prefix,
-                          const char *what, const char *switch_key, const char *off,
-                          const char *on_value, char *msg, size_t n) {
-  if (on) return -1;
-  stConfig d;
-  st_config_default(&d);
-  for (int i = 0; i < NKEYS; i++) {
-    const stConfigKey *k = &g_keys[i];
-    if (strcmp(k->section, section) || strncmp(k->name, prefix, strlen(prefix)) || is_default(c, &d, k))
-      continue;
-    snprintf(msg, n, "it shapes %s, which %s = %s turns off (expected %s %s, or the key "
-             "left out)", what, switch_key, off, switch_key, on_value);
-    return i;
-  }
-  return -1;
-}
-
-/* the primitive stages' extra trials, refused where nothing they shape would run; returns
- * the key index blamed and a message, or -1 */
-static int check_acts(const stConfig *c, char *msg, size_t n) {
-  const unsigned prims = st_config_primitive_mask(c);
-  const unsigned open_grasp = 1u << ST_PRIM_OPEN | 1u << ST_PRIM_GRASP;
-  if (c->stage_handover && !(prims & (open_grasp | 1u << ST_PRIM_MOVE))) {
-    snprintf(msg, n, "the hand-over trials are open's, grasp's and move's, and stage.primitives "
-             "= %s evaluates none of them (expected one of them in stage.primitives, or "
-             "stage.handover = false)", c->stage_primitives);
-    return st_config_find("stage", "handover");
-  }
-  if (c->postures_vary_starts && !(prims & open_grasp)) {
-    snprintf(msg, n, "the drawn starts are open's and grasp's, and stage.primitives = %s "
-             "evaluates neither (expected open or grasp in stage.primitives, or "
-             "postures.vary_starts = false)", c->stage_primitives);
-    return st_config_find("postures", "vary_starts");
-  }
-  if (c->postures_vary_replace_generations >= c->ga_max_generations) {
-    snprintf(msg, n, "%d generations of replace, and ga.max_generations = %d ends the run before "
-             "the first of extra (expected fewer than ga.max_generations)",
-             c->postures_vary_replace_generations, c->ga_max_generations);
-    return st_config_find("postures", "vary_replace_generations");
-  }
-  /* fixed_chained counts only genotypes solving the 16 from their fixed starts */
-  if (c->postures_vary_starts && c->postures_vary_trials == ST_VARY_REPLACE &&
-      c->stage_chain_trials > 0 && c->stage_chain_complete == ST_CHAIN_COMPLETE_FIXED_CHAINED) {
-    snprintf(msg, n, "fixed_chained completes a genotype only when it solves the 16 from their "
-             "fixed starts, and postures.vary_trials = replace draws open's and grasp's in every "
-             "generation, so the stage could never complete (expected postures.vary_trials = "
-             "extra, or stage.chain_complete = all)");
-    return st_config_find("stage", "chain_complete");
-  }
-  return -1;
-}
-
 /* cross-key rules; returns the key index blamed and a message, or -1 */
 static int check_rules(const stConfig *c, char *msg, size_t n) {
+  /* the trial kinds' rules are their rows' (selftalk/trialkind.h: st_trial_kinds_check) */
   int k = check_integrated(c, msg, n);
   if (k >= 0) return k;
-  if ((k = check_switched(c, c->postures_vary_starts, "postures", "vary_", "the drawn starts",
-                          "postures.vary_starts", "false", "= true", msg, n)) >= 0 ||
-      (k = check_switched(c, c->stage_handover, "stage", "handover_", "the hand-over trials",
-                          "stage.handover", "false", "= true", msg, n)) >= 0 ||
-      (k = check_switched(c, c->stage_chain_trials > 0, "stage", "chain_", "the chained trials",
-                          "stage.chain_trials", "0", "> 0", msg, n)) >= 0 ||
-      (k = check_switched(c, c->stage_chain_combine == ST_CHAIN_SUM, "stage", "chain_gate",
-                          "the summed F_chain", "stage.chain_combine", "harmonic", "= sum", msg,
-                          n)) >= 0)
-    return k;
-  /* simple-prim's trials are the 16: its varied starts can only replace theirs */
-  if (c->postures_vary_trials == ST_VARY_EXTRA && c->stage_stages != ST_STAGES_MAIN) {
-    snprintf(msg, n, "extra adds main-prim trials, and stage.stages = %s runs another stage "
-             "(expected stage.stages = main_prim, or postures.vary_trials = replace)",
-             st_config_enum_name("stage", "stages", c->stage_stages));
-    return st_config_find("postures", "vary_trials");
-  }
-  /* a schedule of replace, then extra: only extra has a second phase */
-  if (c->postures_vary_replace_generations > 0 && c->postures_vary_trials != ST_VARY_EXTRA) {
-    snprintf(msg, n, "%d generations of replace before extra, and postures.vary_trials = replace "
-             "replaces throughout (expected postures.vary_trials = extra, or the key left out)",
-             c->postures_vary_replace_generations);
-    return st_config_find("postures", "vary_replace_generations");
-  }
-  /* the elite is genotype 0, which st_ga_next fills with the previous generation's best only
-   * when it keeps elites */
-  if (c->stage_handover_rollin == ST_ROLLIN_ELITE && c->ga_elites < 1) {
-    snprintf(msg, n, "elite rolls the hand-over trials in with the generation's genotype 0, "
-             "which is the previous generation's best only with ga.elites >= 1 (expected "
-             "ga.elites >= 1, or stage.handover_rollin = self)");
-    return st_config_find("stage", "handover_rollin");
-  }
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
              "reach,open,grasp,move)", c->stage_primitives);
     return st_config_find("stage", "primitives");
   }
-  if ((k = check_acts(c, msg, n)) >= 0) return k;
   if (c->ga_elites > c->ga_population) {
     snprintf(msg, n, "%d exceeds ga.population = %d (expected elites <= population)", c->ga_elites,
              c->ga_population);
@@ -663,16 +610,25 @@ stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz) {
   return ST_OK;
 }
 
+/* whether value is one key k takes: within an INT's or REAL's range, 0 or 1 for a BOOL (its
+ * range), the index of a choice for an ENUM */
+static int value_in_range(const stConfigKey *k, double value) {
+  char c[64];
+  if (k->type != ST_CFG_ENUM) return value >= k->min && value <= k->max;
+  return value >= 0.0 && value < 64.0 && value == (int)value &&
+         !choice_at(k->choices, (int)value, c, sizeof c);
+}
+
 stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
                                 size_t errsz) {
   ST_ASSERT(section && name);
   const int i = st_config_find(section, name);
   const stConfigKey *k = st_config_key(i);
-  if (!k || (k->type != ST_CFG_INT && k->type != ST_CFG_REAL)) {
+  if (!k || k->type == ST_CFG_STR) {
     st__errf(err, errsz, "%s.%s: not a numeric key of the key table", section, name);
     return ST_ERR_ARG;
   }
-  if (value >= k->min && value <= k->max) return ST_OK;
+  if (value_in_range(k, value)) return ST_OK;
   char exp[128];
   expected(k, exp, sizeof exp);
   st__errf(err, errsz, "%s.%s: %g is out of range (expected %s)", section, name, value, exp);
@@ -907,6 +863,33 @@ stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz
   return st__text_read_parse(path, parse_cb, cfg, err, errsz);
 }
 
+int st_config_key_line(const char *path, int i) {
+  ST_ASSERT(path);
+  ST_ASSERT(i >= 0 && i < NKEYS);
+  char *text;
+  size_t len;
+  char e[256];
+  if (st_text_read(path, ST_FILE_MAX, &text, &len, e, sizeof e)) return 0;
+  const char *rest = text, *line;
+  size_t n;
+  int lineno = 0, found = 0, in_section = 0;
+  const size_t nk = strlen(g_keys[i].name), ns = strlen(g_keys[i].section);
+  while (!found && st__text_line(&rest, text + len, &line, &n, NULL)) {
+    lineno++;
+    while (n && isspace((unsigned char)*line)) line++, n--;
+    if (n && *line == '[') {
+      in_section = n > ns + 1 && !strncmp(line + 1, g_keys[i].section, ns) && line[ns + 1] == ']';
+      continue;
+    }
+    if (!in_section || n <= nk || strncmp(line, g_keys[i].name, nk)) continue;
+    size_t k = nk;
+    while (k < n && (line[k] == ' ' || line[k] == '\t')) k++;
+    found = k < n && (line[k] == '=' || line[k] == ':');
+  }
+  free(text);
+  return found ? lineno : 0;
+}
+
 static stStatus set_one(stConfig *cfg, const char *assignment, int cross, char *err, size_t errsz) {
   const char *eq = strchr(assignment, '=');
   const char *dot = strchr(assignment, '.');
@@ -992,32 +975,48 @@ static void format_value(const stConfig *cfg, const stConfigKey *k, char *buf, s
 int st_config_write(FILE *f, const stConfig *cfg) {
   ST_ASSERT(f && cfg);
   fprintf(f, "# libselftalk %s resolved configuration\n", ST_VERSION_STRING);
-  for (int i = 0; i < NKEYS; i++) {
-    const stConfigKey *k = &g_keys[i];
-    if (i == 0 || strcmp(k->section, g_keys[i - 1].section)) fprintf(f, "\n[%s]\n", k->section);
-    char v[ST_CONFIG_STR_MAX + 32];
-    format_value(cfg, k, v, sizeof v);
-    fprintf(f, "# %s\n%s = %s\n", k->help, k->name, v);
+  for (int first = 0; first < NKEYS;) {
+    int end = first; /* the section: keys first..end-1 */
+    while (end < NKEYS && !strcmp(g_keys[end].section, g_keys[first].section)) end++;
+    fprintf(f, "\n[%s]\n", g_keys[first].section);
+    for (int t = 0; t < ST_TIER_COUNT; t++) {
+      int said = 0;
+      for (int i = first; i < end; i++) {
+        const stConfigKey *k = &g_keys[i];
+        if (st_config_key_tier(i) != (stConfigTier)t) continue;
+        if (!said++) fprintf(f, "# ---- %s: %s ----\n", g_tier_name[t], g_tier_title[t]);
+        char v[ST_CONFIG_STR_MAX + 32];
+        format_value(cfg, k, v, sizeof v);
+        fprintf(f, "# %s\n%s = %s\n", k->help, k->name, v);
+      }
+    }
+    first = end;
   }
   return ferror(f) ? -1 : 0;
 }
 
+/* one key of the reference: name, type, default, range, readers; help */
+static void help_key(FILE *f, const stConfig *d, const stConfigKey *k) {
+  static const char *tn[] = {"int", "real", "bool", "enum", "string"};
+  char v[ST_CONFIG_STR_MAX + 32], exp[128];
+  format_value(d, k, v, sizeof v);
+  if (k->type == ST_CFG_REAL) short_real(*CFIELD(d, k, double), v, sizeof v);
+  expected(k, exp, sizeof exp);
+  const stageKey *r = stage_key(k);
+  const int some = r && r->stages != ST_CONFIG_ALL_STAGES;
+  char readers[160] = "";
+  if (some) readers_phrase(r->stages, readers, sizeof readers);
+  fprintf(f, "%s.%s (%s, default %s; %s)%s%s%s\n    %s\n", k->section, k->name, tn[k->type], v,
+          exp, some ? "; read by " : "", readers, some ? " only" : "", k->help);
+}
+
 void st_config_help(FILE *f) {
   ST_ASSERT(f);
-  static const char *tn[] = {"int", "real", "bool", "enum", "string"};
   stConfig d;
   st_config_default(&d);
-  for (int i = 0; i < NKEYS; i++) {
-    const stConfigKey *k = &g_keys[i];
-    char v[ST_CONFIG_STR_MAX + 32], exp[128];
-    format_value(&d, k, v, sizeof v);
-    if (k->type == ST_CFG_REAL) short_real(*CFIELD(&d, k, double), v, sizeof v);
-    expected(k, exp, sizeof exp);
-    const stageKey *r = stage_key(k);
-    const int some = r && r->stages != ST_CONFIG_ALL_STAGES;
-    char readers[160] = "";
-    if (some) readers_phrase(r->stages, readers, sizeof readers);
-    fprintf(f, "%s.%s (%s, default %s; %s)%s%s%s\n    %s\n", k->section, k->name, tn[k->type], v,
-            exp, some ? "; read by " : "", readers, some ? " only" : "", k->help);
+  for (int t = 0; t < ST_TIER_COUNT; t++) {
+    fprintf(f, "%s==== %s: %s ====\n", t ? "\n" : "", g_tier_name[t], g_tier_title[t]);
+    for (int i = 0; i < NKEYS; i++)
+      if (st_config_key_tier(i) == (stConfigTier)t) help_key(f, &d, &g_keys[i]);
   }
 }

@@ -8,6 +8,7 @@
 
 #include "core/internal.h"
 #include "selftalk/caretaker.h"
+#include "selftalk/trialkind.h"
 
 /* ---- protocol and workspace ---- */
 
@@ -26,6 +27,7 @@ stStatus st_protocol_create(const stConfig *cfg, stProtocol **out, char *err, si
   ST_ASSERT(cfg && out);
   *out = NULL;
   stStatus st = st_config_validate(cfg, err, errsz);
+  if (!st) st = st_trial_kinds_check(cfg, NULL, err, errsz);
   if (st) return st;
   stProtocol *p = calloc(1, sizeof *p);
   if (!p) return ST_ERR_NOMEM;
@@ -117,8 +119,57 @@ stController st_net_controller(stNetController *c, const stNetParams *net, const
   c->force = force;
   c->nforce = force ? nforce : 0;
   stController ctl = {net_reset, net_act, st_net_ninputs(net->arch), c,
-                      st_net_noutputs(net->arch), net->arch == ST_ARCH_A};
+                      st_net_noutputs(net->arch), net->arch == ST_ARCH_A, NULL};
   return ctl;
+}
+
+/* ---- a roll-in and the controller that takes over ---- */
+
+static void rollin_reset(void *self, const stEpisodeSpec *e) {
+  stRollinController *c = self;
+  if (c->rollin.reset) c->rollin.reset(c->rollin.self, e);
+  if (c->then.reset) c->then.reset(c->then.self, e);
+  c->rolling = 0;
+}
+
+/* the roll-in acts while hand-over words have not handed over: the switch is decided by the
+ * word source just before this step's action, on the state before it */
+static void rollin_hear(void *self, stWordSource source, int word, int handover) {
+  stRollinController *c = self;
+  c->rolling = source == ST_WORDS_HANDOVER && handover < 0;
+  const stController *actor = c->rolling ? &c->rollin : &c->then;
+  if (actor->hear) actor->hear(actor->self, source, word, handover);
+}
+
+static void rollin_act(void *self, const stWorld *w, const stQuantities *q, const double *in,
+                       int step, double *out) {
+  stRollinController *c = self;
+  const stController *actor = c->rolling ? &c->rollin : &c->then;
+  actor->act(actor->self, w, q, in, step, out);
+}
+
+/* a controller of the base network's shape: 25 inputs, 13 outputs, no labels */
+static int base_shaped(const stController *c) {
+  const int nout = c->noutputs ? c->noutputs : ST_NET_NOUT;
+  return c->act && c->ninputs == ST_NET_NIN && nout == ST_NET_NOUT && !c->talks;
+}
+
+stStatus st_rollin_controller(stRollinController *c, const stController *rollin,
+                              const stController *then, stController *out, char *err,
+                              size_t errsz) {
+  ST_ASSERT(c && rollin && then && out);
+  if (!base_shaped(rollin) || !base_shaped(then))
+    return st__errf(err, errsz, "roll-in: two controllers of the base network's shape (%d inputs, "
+                    "%d outputs, not talking; here %d/%d and %d/%d): only a network without "
+                    "memory can take over mid-episode", ST_NET_NIN, ST_NET_NOUT, rollin->ninputs,
+                    rollin->noutputs ? rollin->noutputs : ST_NET_NOUT, then->ninputs,
+                    then->noutputs ? then->noutputs : ST_NET_NOUT), ST_ERR_ARG;
+  memset(c, 0, sizeof *c);
+  c->rollin = *rollin;
+  c->then = *then;
+  const stController ctl = {rollin_reset, rollin_act, ST_NET_NIN, c, ST_NET_NOUT, 0, rollin_hear};
+  *out = ctl;
+  return ST_OK;
 }
 
 stStatus st_force_check(const stForce *force, int nforce, char *err, size_t errsz) {
@@ -178,25 +229,6 @@ static stStatus check_episode(const stController *ctl, const stWords *words, cha
     return st__errf(err, errsz, "episode: word source %d, word %d (expected a source of "
                     "stWordSource; a fixed or handed-over word 0..3)", (int)words->source,
                     words->word), ST_ERR_ARG;
-  return ST_OK;
-}
-
-/* a roll-in controller (st_episode_run_rollin): only with hand-over words, and both actors of
- * the base network's shape (a talking or wider controller is an integrated network, whose
- * linguistic memory the switch would cut) */
-static stStatus check_rollin(const stController *ctl, const stController *rollin,
-                             const stWords *words, char *err, size_t errsz) {
-  if (!rollin) return ST_OK;
-  const int nc = ctl->noutputs ? ctl->noutputs : ST_NET_NOUT;
-  const int nr = rollin->noutputs ? rollin->noutputs : ST_NET_NOUT;
-  if (!rollin->act || words->source != ST_WORDS_HANDOVER || ctl->ninputs != ST_NET_NIN ||
-      rollin->ninputs != ST_NET_NIN || nc != ST_NET_NOUT || nr != ST_NET_NOUT || ctl->talks ||
-      rollin->talks)
-    return st__errf(err, errsz, "episode: a roll-in controller needs hand-over words (source %s) "
-                    "and two controllers of the base network's shape (%d inputs, %d outputs, not "
-                    "talking; here %d/%d and %d/%d): only a network without memory can take over "
-                    "mid-episode", st_word_source_name(words->source), ST_NET_NIN, ST_NET_NOUT,
-                    ctl->ninputs, nc, rollin->ninputs, nr), ST_ERR_ARG;
   return ST_OK;
 }
 
@@ -277,25 +309,15 @@ static void observe(const stProtocol *p, const stWorld *w, stTraceStep *s) {
 stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
                         const stController *ctl, const stWords *words, const stScorer *scorer,
                         stTraceFn trace, void *ctx, char *err, size_t errsz) {
-  ST_ASSERT(p && ws && e && ctl && words && scorer);
-  return st_episode_run_rollin(p, ws, e, ctl, NULL, words, scorer, trace, ctx, err, errsz);
-}
-
-stStatus st_episode_run_rollin(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
-                               const stController *ctl, const stController *rollin,
-                               const stWords *words, const stScorer *scorer, stTraceFn trace,
-                               void *ctx, char *err, size_t errsz) {
   ST_ASSERT(p && ws && e && ctl && ctl->act && words && scorer && scorer->step);
   ST_ASSERT(e->steps >= 0);
   stWorld *w = NULL;
   stStatus st = check_episode(ctl, words, err, errsz);
-  if (!st) st = check_rollin(ctl, rollin, words, err, errsz);
   if (!st) st = episode_world(p, ws, e->dynamic, &w, err, errsz);
   if (st) return st;
   st_world_set_seed(w, e->seed_key); /* quickstep's shuffling: keyed by the trial, not the thread */
   st_world_reset(w, e->qhat0, e->obj, e->target);
   if (ctl->reset) ctl->reset(ctl->self, e);
-  if (rollin && rollin->reset) rollin->reset(rollin->self, e);
   if (scorer->begin) scorer->begin(scorer->self);
   hearing h;
   st_caretaker_init(&h.ct, &p->cfg);
@@ -323,10 +345,8 @@ stStatus st_episode_run_rollin(const stProtocol *p, stWorkspace *ws, const stEpi
     st_net_label_input(s.word, words->scale, ling);
     st_sensor_inputs(w, &p->sensor, &q, s.focus_target, step == 0, ling, words->secondary, in,
                      ctl->ninputs);
-    /* the switch: the roll-in's actor until the step the word is handed over at (decided by
-     * heard_word just above, on the state before this step's action), ctl from it on */
-    const stController *actor = rollin && h.handover < 0 ? rollin : ctl;
-    actor->act(actor->self, w, &q, in, step, out);
+    if (ctl->hear) ctl->hear(ctl->self, words->source, s.word, h.handover);
+    ctl->act(ctl->self, w, &q, in, step, out);
     s.label = ctl->talks ? st_episode_label(out + ST_NET_NOUT) : -1;
     h.last_label = s.label;
     s.focus_target = st_focus_is_target(&p->sensor, out[ST_NET_OUT_FOCUS]);

@@ -499,7 +499,8 @@ const char *st_scripted_phase(const stScripted *s) {
 
 stController st_scripted_controller(stScripted *s) {
   ST_ASSERT(s);
-  stController c = {scripted_reset, scripted_act, ST_NET_IN_LING + ST_NET_NLING, s, ST_NET_NOUT, 0};
+  stController c = {scripted_reset, scripted_act, ST_NET_IN_LING + ST_NET_NLING, s, ST_NET_NOUT, 0,
+                    NULL};
   return c;
 }
 
@@ -519,7 +520,7 @@ stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted
   const uint64_t key =
       st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, 0, 0, (uint64_t)index).key;
   const stController c = st_scripted_controller(s);
-  return st_trial_run_with(p, ws, &t, &c, key, r, trace, ctx, err, errsz);
+  return st_trial_run(p, ws, &t, &c, key, r, trace, ctx, err, errsz);
 }
 
 stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted *s, int k, int t,

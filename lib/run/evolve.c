@@ -221,18 +221,16 @@ static stStatus append(const char *path, const char *text, char *err, size_t err
   return ST_OK;
 }
 
-/* a primitive run with main-prim */
-static int has_main(const run *R) {
-  for (int i = 0; i < R->nstages; i++)
-    if (!R->integrated && R->stages[i] == ST_STAGE_MAIN) return 1;
-  return 0;
+/* the trials of kind k the run's fitness.csv has columns for: the most any of its primitive
+ * stages has */
+static int run_kind_trials(const run *R, stTrialKind k) {
+  int n = 0;
+  for (int i = 0; i < R->nstages && !R->integrated; i++) {
+    const int m = st_trial_kind_count(R->cfg, R->stages[i], k);
+    if (m > n) n = m;
+  }
+  return n;
 }
-
-/* main-prim's hand-over trials (stage.handover) and chained trials (stage.chain_trials) */
-static int has_handover(const run *R) { return has_main(R) && R->cfg->stage_handover; }
-static int chain_trials(const run *R) { return has_main(R) ? R->cfg->stage_chain_trials : 0; }
-/* main-prim's varied trials (postures.vary_trials = extra) */
-static int has_varied(const run *R) { return has_main(R) && st_stage_varied(R->cfg, ST_STAGE_MAIN); }
 
 static stStatus start_files(run *R, char *err, size_t errsz) {
   stAtomicFile af;
@@ -368,12 +366,8 @@ static void fitness_row(const run *R, int gen, const genStats *s, stFitnessRow *
   st__strlcpy(w->stage, stage_label(R), sizeof w->stage);
   w->stage_generation = R->stage_gen, w->all_success = s->all, w->successes = be->successes;
   for (int p = 0; p < ST_NPRIM; p++) w->f_prim[p] = be->fp[p];
-  for (int t = 0; t < ST_PRIM_TRIALS; t++) w->success[t] = be->success[t];
-  w->handovers = be->handovers;
-  for (int t = 0; t < ST_HANDOVER_TRIALS; t++) w->handover_success[t] = be->handover_success[t];
-  w->f_chain = be->f_chain; /* 0 in simple-prim generations, and the chained trials unsolved */
-  for (int t = 0; t < be->chain_trials; t++) w->chain_success[t] = be->chain_success[t];
-  for (int t = 0; t < ST_VARIED_TRIALS; t++) w->varied_success[t] = be->varied_success[t];
+  /* each kind's (zero where it did not run: simple-prim generations, replacing ones) */
+  memcpy(w->kind, be->kind, sizeof w->kind);
 }
 
 /* the generation's fitness.csv row and its best genotype, appended and synced */
@@ -411,19 +405,15 @@ static void progress(const run *R, int gen, const genStats *s) {
             be->successes, be->ntrials, rate, e1, e2, unst);
   } else {
     const stEvaluation *be = &R->eval[s->best];
-    char ho[128] = "";
-    int m = 0;
-    if (be->handover_trials)
-      m += snprintf(ho, sizeof ho, " (hand-over %2d/%d, %2d handed over)", be->handover_successes,
-                    be->handover_trials, be->handovers);
-    if (be->varied_trials)
-      m += snprintf(ho + m, sizeof ho - (size_t)m, " (varied %d/%d)", be->varied_successes,
-                    be->varied_trials);
-    else if (be->fixed_drawn && has_varied(R)) /* postures.vary_replace_generations */
-      m += snprintf(ho + m, sizeof ho - (size_t)m, " (varied: replacing %d)", be->fixed_drawn);
-    if (be->chain_trials)
-      snprintf(ho + m, sizeof ho - (size_t)m, " (chained %d/%d, F_chain %.1f)", be->chain_successes,
-               be->chain_trials, be->f_chain);
+    char ho[256] = ""; /* what the kinds of trials of the run's file say */
+    size_t m = 0;
+    for (int k = 0; k < ST_TRIAL_KIND_COUNT && m < sizeof ho; k++) {
+      const stTrialKindDef *d = st_trial_kind_def((stTrialKind)k);
+      if (d->note && run_kind_trials(R, d->kind) > 0) {
+        const int w = d->note(be, ho + m, sizeof ho - m);
+        m += w > 0 ? (size_t)w : 0;
+      }
+    }
     fprintf(f,
             "gen %4d %-11s best %8.3f mean %8.3f bonus %3.0f solves %2d/%d%s all-solved %3d | "
             "%.2f gen/s elapsed %s left <= %s%s\n",
@@ -456,10 +446,10 @@ static int next_stage(run *R, int gen, int all, stStatus *st, char *err, size_t 
   /* what completion counted (st_evaluation_completes): with fixed_chained, not the hand-over
    * and varied trials, which only train */
   if (R->def->progress && R->cfg->stage_chain_complete == ST_CHAIN_COMPLETE_FIXED_CHAINED &&
-      e->chain_trials > 0)
+      e->kind[ST_TRIAL_CHAINED].trials > 0)
     fprintf(R->def->progress, "evolve: %s complete at generation %d (%d genotypes solve the %d "
             "fixed and %d chained trials)\n", stage_label(R), gen, all,
-            st_evaluation_fixed_trials(e), e->chain_trials);
+            e->kind[ST_TRIAL_FIXED].trials, e->kind[ST_TRIAL_CHAINED].trials);
   else if (R->def->progress)
     fprintf(R->def->progress, "evolve: %s complete at generation %d (%d genotypes solve all %d trials)\n",
             stage_label(R), gen, all, e->ntrials);
@@ -529,8 +519,11 @@ static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz
   const int cap = R->integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations;
   R->limit = def->generations > 0 ? def->generations : cap;
   R->threads = st_thread_count(def->threads, cfg);
-  const stFitnessLayout fl = {R->integrated, R->integrated ? R->idef.trials : ST_PRIM_TRIALS,
-                              has_handover(R), chain_trials(R), has_varied(R)};
+  stFitnessLayout fl;
+  memset(&fl, 0, sizeof fl);
+  fl.integrated = R->integrated;
+  fl.trials = R->integrated ? R->idef.trials : 0;
+  for (int k = 0; k < ST_TRIAL_KIND_COUNT; k++) fl.kind_trials[k] = run_kind_trials(R, (stTrialKind)k);
   st_fitness_csv(&fl, &R->fcsv);
   return ST_OK;
 }
@@ -616,6 +609,7 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   R.def = def;
   R.cfg = def->cfg;
   stStatus st = st_config_validate(def->cfg, err, errsz);
+  if (!st) st = st_trial_kinds_check(def->cfg, NULL, err, errsz);
   if (st) return st;
   if ((st = plan_run(&R, def, err, errsz))) return st;
   if ((st = prepare_dir(&R, err, errsz))) return st;

@@ -22,8 +22,8 @@ void st_evolve_task_run(const stProtocol *p, const stIntegratedDef *idef, stWork
   if (!st && t->integrated)
     st = st_int_evaluate(p, idef, ws, t->generation, t->individual, &np, &r->ieval, e, n);
   else if (!st)
-    st = st_stage_evaluate_rollin(p, ws, t->stage, t->generation, t->individual, &np,
-                                  t->has_rollin ? &rollin : NULL, &r->eval, e, n);
+    st = st_stage_evaluate(p, ws, t->stage, t->generation, t->individual, &np,
+                           t->has_rollin ? &rollin : NULL, &r->eval, e, n);
   r->status = st;
   r->fitness = st ? NAN : t->integrated ? r->ieval.fitness : r->eval.fitness;
 }

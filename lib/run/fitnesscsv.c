@@ -3,6 +3,7 @@
  * reader of a generation's trials. */
 #include "selftalk/fitnesscsv.h"
 
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,34 +14,26 @@
 #define P ST_FITNESS_PRIMITIVE
 #define I ST_FITNESS_INTEGRATED
 #define BOTH (ST_FITNESS_PRIMITIVE | ST_FITNESS_INTEGRATED)
-/* the integrated and the primitive columns interleaved so that each keeps its order */
+/* the integrated and the primitive columns interleaved so that each keeps its order; the
+ * primitive stages' trials are the kinds' columns, after these */
 static const stFitnessColumn g_cols[] = {
-    {ST_CSV_COL_INT(R, generation, "generation", 0), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, best, "best"), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, mean, "mean"), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, worst, "worst"), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, f_int, "best_F_int"), I, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, f_pred, "best_F_pred"), I, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, bonus, "best_bonus"), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, bonus_auto, "best_bonus_auto"), I, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_NAME(R, stage, "stage"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_INT(R, stage_generation, "stage_generation", 0), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_INT(R, all_success, "all_success", 0), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_INT(R, successes, "best_successes", 0), BOTH, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_REACH], "best_F_reach"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_OPEN], "best_F_open"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_GRASP], "best_F_grasp"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_MOVE], "best_F_move"), P, ST_FITNESS_ALL, ST_FITNESS_ONE},
-    {ST_CSV_COL_INT(R, success[0], "best_t%d", 0), BOTH, ST_FITNESS_ALL, ST_FITNESS_PER_TRIAL},
-    /* main-prim's hand-over trials (stage.handover): how many handed over, and each solved */
-    {ST_CSV_COL_INT(R, handovers, "best_handovers", 0), P, ST_FITNESS_HANDOVER, ST_FITNESS_ONE},
-    {ST_CSV_COL_INT(R, handover_success[0], "best_h%d", 0), P, ST_FITNESS_HANDOVER,
-     ST_FITNESS_PER_HANDOVER},
-    /* main-prim's chained trials (stage.chain_trials): their eq. 2.14 fitness and each solved */
-    {ST_CSV_COL_REAL(R, f_chain, "best_F_chain"), P, ST_FITNESS_CHAIN, ST_FITNESS_ONE},
-    {ST_CSV_COL_INT(R, chain_success[0], "best_c%d", 0), P, ST_FITNESS_CHAIN, ST_FITNESS_PER_CHAIN},
-    /* main-prim's varied trials (postures.vary_trials = extra): each solved */
-    {ST_CSV_COL_INT(R, varied_success[0], "best_v%d", 0), P, ST_FITNESS_VARIED, ST_FITNESS_PER_VARIED},
+    {ST_CSV_COL_INT(R, generation, "generation", 0), BOTH, 0},
+    {ST_CSV_COL_REAL(R, best, "best"), BOTH, 0},
+    {ST_CSV_COL_REAL(R, mean, "mean"), BOTH, 0},
+    {ST_CSV_COL_REAL(R, worst, "worst"), BOTH, 0},
+    {ST_CSV_COL_REAL(R, f_int, "best_F_int"), I, 0},
+    {ST_CSV_COL_REAL(R, f_pred, "best_F_pred"), I, 0},
+    {ST_CSV_COL_REAL(R, bonus, "best_bonus"), BOTH, 0},
+    {ST_CSV_COL_REAL(R, bonus_auto, "best_bonus_auto"), I, 0},
+    {ST_CSV_COL_NAME(R, stage, "stage"), P, 0},
+    {ST_CSV_COL_INT(R, stage_generation, "stage_generation", 0), P, 0},
+    {ST_CSV_COL_INT(R, all_success, "all_success", 0), P, 0},
+    {ST_CSV_COL_INT(R, successes, "best_successes", 0), BOTH, 0},
+    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_REACH], "best_F_reach"), P, 0},
+    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_OPEN], "best_F_open"), P, 0},
+    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_GRASP], "best_F_grasp"), P, 0},
+    {ST_CSV_COL_REAL(R, f_prim[ST_PRIM_MOVE], "best_F_move"), P, 0},
+    {ST_CSV_COL_INT(R, success[0], ST_TRIAL_COLUMN, 0), I, 1},
 };
 #undef R
 #undef P
@@ -49,38 +42,52 @@ static const stFitnessColumn g_cols[] = {
 #define NCOLS ((int)(sizeof g_cols / sizeof g_cols[0]))
 #define GENERATION (&g_cols[0].col) /* the first column: checkpoint.c finds rows by it */
 
-/* the trials' columns (best_t%d) */
-static const stCsvColumn *trial_family(void) {
-  int i = 0;
-  while (g_cols[i].per != ST_FITNESS_PER_TRIAL) i++;
-  return &g_cols[i].col;
-}
-
 const stFitnessColumn *st_fitness_columns(int *n) {
   ST_ASSERT(n);
   *n = NCOLS;
   return g_cols;
 }
 
+/* column k of the schema: col, named name (with trial t when it is a format), moved by offset */
+static void put(stFitnessCsv *c, int k, const stCsvColumn *col, const char *name, int t,
+                size_t offset) {
+  c->col[k] = *col;
+  c->col[k].offset += offset;
+  if (t < 0) return;
+  snprintf(c->name[k], sizeof c->name[k], name, t);
+  c->col[k].name = c->name[k];
+}
+
+/* the kinds' columns: a kind's own (over its stKindEvaluation), then one per trial */
+static int kind_columns(const stFitnessLayout *l, stFitnessCsv *c, int k) {
+  for (int i = 0; i < ST_TRIAL_KIND_COUNT; i++) {
+    const stTrialKindDef *d = st_trial_kind_def((stTrialKind)i);
+    const int n = l->kind_trials[i];
+    if (n <= 0) continue;
+    const size_t at = offsetof(stFitnessRow, kind) + (size_t)i * sizeof(stKindEvaluation);
+    if (d->column.name) put(c, k++, &d->column, NULL, -1, at);
+    const stCsvColumn trial = ST_CSV_COL_INT(stKindEvaluation, success[0], d->trial_column, 0);
+    for (int t = 0; t < n; t++, k++) put(c, k, &trial, d->trial_column, t, at + (size_t)t * sizeof(int));
+  }
+  return k;
+}
+
 void st_fitness_csv(const stFitnessLayout *l, stFitnessCsv *c) {
-  ST_ASSERT(l && c && l->trials >= 0 && l->trials <= ST_FITNESS_MAX_TRIALS);
-  ST_ASSERT(l->chain_trials >= 0 && l->chain_trials <= ST_CHAIN_TRIALS_MAX);
+  ST_ASSERT(l && c && l->trials >= 0 && l->trials <= ST_INT_MAX_TRIALS);
   memset(c, 0, sizeof *c);
   const unsigned stage = l->integrated ? ST_FITNESS_INTEGRATED : ST_FITNESS_PRIMITIVE;
-  const int has[] = {1, !l->integrated && l->handover, !l->integrated && l->chain_trials > 0,
-                     !l->integrated && l->varied};
-  const int count[] = {1, l->trials, ST_HANDOVER_TRIALS, l->chain_trials, ST_VARIED_TRIALS};
   int k = 0;
   for (int i = 0; i < NCOLS; i++) {
     const stFitnessColumn *f = &g_cols[i];
-    if (!(f->stages & stage) || !has[f->part]) continue;
-    for (int t = 0; t < count[f->per]; t++, k++) {
-      c->col[k] = f->col;
-      if (f->per == ST_FITNESS_ONE) continue;
-      snprintf(c->name[k], sizeof c->name[k], f->col.name, t);
-      c->col[k].name = c->name[k];
-      c->col[k].offset += (size_t)t * sizeof(int);
-    }
+    if (!(f->stages & stage)) continue;
+    if (!f->per_trial) put(c, k++, &f->col, NULL, -1, 0);
+    for (int t = 0; f->per_trial && t < l->trials; t++, k++)
+      put(c, k, &f->col, f->col.name, t, (size_t)t * sizeof(int));
+  }
+  if (!l->integrated) {
+    for (int i = 0; i < ST_TRIAL_KIND_COUNT; i++)
+      ST_ASSERT(l->kind_trials[i] >= 0 && l->kind_trials[i] <= st_trial_kind_def((stTrialKind)i)->max);
+    k = kind_columns(l, c, k);
   }
   const stCsvSchema s = {"fitness.csv", c->col, k, 0, 0, sizeof(stFitnessRow), NULL};
   c->schema = s;
@@ -111,7 +118,7 @@ static int trial_columns(char *header, int *gcol, int *tcol, int max) {
   *gcol = -1;
   for (int i = 0; i < n; i++) {
     char want[32];
-    snprintf(want, sizeof want, trial_family()->name, nt);
+    snprintf(want, sizeof want, ST_TRIAL_COLUMN, nt);
     if (!strcmp(f[i], GENERATION->name)) *gcol = i;
     if (!strcmp(f[i], want) && nt < max) tcol[nt++] = i;
   }
@@ -136,7 +143,7 @@ stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *suc
       *n = trial_columns(line, &gcol, tcol, max);
       if (gcol < 0 || *n == 0) {
         char first[32];
-        snprintf(first, sizeof first, trial_family()->name, 0);
+        snprintf(first, sizeof first, ST_TRIAL_COLUMN, 0);
         st = ST_ERR_PARSE;
         st__errf(err, errsz, "%s:1: no %s and %s columns (expected the fitness.csv of an "
                  "integrated run)", path, GENERATION->name, first);
