@@ -376,7 +376,7 @@ if pstat > "$tmp/st.out" 2>&1 &&
   ok "status: the jobs done and running, what is left (by hand)"
 else ko "status" "$(cat "$tmp/st.out")"; fi
 mkdir -p "$tmp/s/int-ct-s1"; printf 'gen,best\n0,1\n' > "$tmp/s/int-ct-s1/fitness.csv"
-if ! pstat > /dev/null 2> "$tmp/e" && grep -q "int-ct-s1/fitness.csv:1: expected the columns generation" "$tmp/e"; then
+if ! pstat > /dev/null 2> "$tmp/e" && grep -q "int-ct-s1/fitness.csv:1: header without generation (expected the fitness.csv of ./apps/evolve" "$tmp/e"; then
   ok "status: a fitness.csv without its generation column is refused, FILE:LINE"
 else ko "status, bad fitness.csv" "$(cat "$tmp/e")"; fi
 
