@@ -13,24 +13,27 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import csvschema  # noqa: E402
 import figlib  # noqa: E402
 
 figlib.PROG = "order_screen_report"
+# the columns read, by the library's names (tools/csvschema.py): a renamed one fails here
+TRIALS = csvschema.pick(csvschema.TRIALS, "type", "success")
+FITNESS = csvschema.pick(csvschema.FITNESS, "generation", "best_bonus_auto")
 RUN = re.compile(r"(stct|st|ct|ni)-(mod4|pairs)-s([0-9]+)")
 
 
 def run_row(d, name):
     cond, order, seed = RUN.fullmatch(name).groups()
-    fit = figlib.read_fitness(os.path.join(d, "fitness.csv"), (figlib.GENERATION, "best_bonus_auto"),
-                              live=True)
-    auto = [(r[figlib.GENERATION], r["best_bonus_auto"]) for r in fit]
+    fit = figlib.read_fitness(os.path.join(d, "fitness.csv"), tuple(FITNESS), live=True)
+    auto = [(r["generation"], r["best_bonus_auto"]) for r in fit]
     top = max((a for _, a in auto), default=0)
     first = next((g for g, a in auto if a > 0), None)
     first_top = next((g for g, a in auto if a == top), None) if top > 0 else None
     trials = os.path.join(d, "robustness", "trials.csv")
     rob = by_type = None
     if os.path.exists(os.path.join(d, "robustness", "summary.csv")):
-        rows = figlib.read_csv(trials, {"type": "count", "success": "bit"}, "posteval's trials.csv")
+        rows = figlib.read_csv(trials, dict(TRIALS, success="bit"), "posteval's trials.csv")
         rob = sum(r["success"] for r in rows)
         by_type = [sum(r["success"] for r in rows if r["type"] == k) for k in range(4)]
     return {"cond": cond, "order": order, "seed": int(seed), "gens": len(auto), "rob": rob,
