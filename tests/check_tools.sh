@@ -117,6 +117,14 @@ seed = 4
 ' > "$t/a/config.ini"
 grep -qxF "  the thesis's protocol: no key away from it (config.ini)" <<<"$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)" &&
   ok "run_report: a run of the thesis's protocol says so" || ko "run_report no departure"
+# which starts and solver (issue 46): a config.ini without the keys (made before them) reads with
+# the thesis's defaults, position-only starts and the dense LCP; simple-prim has no solver
+out=$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)
+printf '[stage]\nstages = main_prim\n[postures]\nreach_palm_down = true\n[dynamics]\nlcp = schur\n' > "$t/a/config.ini"
+out2=$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)
+grep -qxF "  reach starts position only, palm as the arm leaves it (postures.reach_palm_down); contact none (simple-prim is kinematic)" <<<"$out" &&
+  grep -qxF "  reach starts palm down (postures.reach_palm_down); contact ODE, dynamics.lcp = schur" <<<"$out2" &&
+  ok "run_report: the run's reach starts and contact solver" || ko "run_report starts and solver: $out $out2"
 # grasp_probe --trace: a hand held 5 cm above the ball that never closes leaves it alone, so once
 # the table collision goes off after step 39 the ball free-falls by ODE's semi-implicit Euler,
 # g h^2 n (n + 1) / 2 after n sub-steps of h = 0.01 s: 0.01471 m after step 40 (n = 5), 0.05396 m

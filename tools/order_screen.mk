@@ -30,7 +30,8 @@ endif
 ifneq ($(filter-out mod4 pairs,$(ORDERS)),)
 $(error ORDERS='$(ORDERS)': expected orders among mod4 pairs)
 endif
-ifneq ($(findstring $(empty) ,$(OUT)),)
+empty :=
+ifneq ($(findstring $(empty) $(empty),$(OUT)),)
 $(error OUT='$(OUT)': expected a path without white space)
 endif
 

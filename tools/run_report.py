@@ -20,7 +20,6 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import csvschema  # noqa: E402
 import figlib  # noqa: E402
 import keytable  # noqa: E402
-import runconfig  # noqa: E402
 from plot_fitness import PRIMS  # noqa: E402
 from runs_summary import success_genotypes  # noqa: E402
 
@@ -73,21 +72,18 @@ def best_line(row):
             f"{row['best']:.2f}, solves {sum(solved)}/{n} trials ({per})")
 
 
-def protocol_line(d):
-    """which reach starts and contact solver the run used (SPEC 13), from its config.ini"""
-    bool_ = lambda t: {"true": True, "1": True, "yes": True, "false": False, "0": False, "no": False}[t]
-    try:
-        down = runconfig.value(d, "postures", "reach_palm_down", None, bool_)
-        lcp = runconfig.value(d, "dynamics", "lcp", None, str)
-        stages = runconfig.value(d, "stage", "stages", None, str)
-    except (ValueError, KeyError) as e:
-        figlib.die(str(e))
-    if stages is None:
-        return f"reach starts and contact solver: not recorded (no {d}/config.ini)"
-    # a config.ini made before a key existed reads with the key's default, as evolve reads it
-    down = bool(down)
-    starts = "palm down" if down else "position only, palm as the arm leaves it"
-    contact = "none (simple-prim is kinematic)" if stages == "simple_prim" else f"ODE, dynamics.lcp = {lcp or 'dense'}"
+def protocol_line(run_dir):
+    """which reach starts and contact solver the run used (SPEC 13), from its config.ini; a key
+    the file lacks (made before the key existed) is at its default, as evolve reads it"""
+    path = os.path.join(run_dir, "config.ini")
+    if not os.path.exists(path):
+        return f"reach starts and contact solver: not recorded (no {path})"
+    values = keytable.read_ini(path)
+    value = lambda key: values.get(key, keytable.KEYS[key][2])
+    starts = "palm down" if value("postures.reach_palm_down").lower() in ("true", "yes", "on", "1") else \
+        "position only, palm as the arm leaves it"
+    contact = "none (simple-prim is kinematic)" if value("stage.stages") == "simple_prim" else \
+        f"ODE, dynamics.lcp = {value('dynamics.lcp')}"
     return f"reach starts {starts} (postures.reach_palm_down); contact {contact}"
 
 

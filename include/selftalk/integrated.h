@@ -181,9 +181,9 @@ void st_int_episode(const stProtocol *p, const stIntegratedDef *def, int k, int 
  * i mod 4, or with integrated.trial_order = pairs (i div 2) mod 4 (SPEC 13). */
 int st_int_trial_type(const stProtocol *p, int i);
 
-/* Trial i of a generation for an individual: type k = i mod 4, target k mod 2, offsets keyed
- * by (seed, generation, trial) - common to every individual - and the solver's generator by
- * (seed, generation, individual, trial). */
+/* Trial i of a generation for an individual: type k = st_int_trial_type(p, i), target k mod 2,
+ * offsets keyed by (seed, generation, trial) - common to every individual - and the solver's
+ * generator by (seed, generation, individual, trial). */
 void st_int_trial(const stProtocol *p, const stIntegratedDef *def, int generation, int individual,
                   int i, stEpisodeSpec *e);
 
