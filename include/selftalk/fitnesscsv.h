@@ -72,7 +72,7 @@ typedef struct stFitnessColumn {
 } stFitnessColumn;
 
 /* The table and its length. */
-const stFitnessColumn *st_fitness_columns(int *n);
+ST_API const stFitnessColumn *st_fitness_columns(int *n);
 
 #define ST_FITNESS_CSV_MAX_COLS \
   (16 + ST_FITNESS_MAX_TRIALS + ST_HANDOVER_TRIALS + ST_CHAIN_TRIALS_MAX + ST_VARIED_TRIALS)
@@ -87,14 +87,14 @@ typedef struct stFitnessCsv {
 
 /* The columns of a layout: 0 <= trials <= ST_FITNESS_MAX_TRIALS (ST_PRIM_TRIALS for the
  * primitive stages), 0 <= chain_trials <= ST_CHAIN_TRIALS_MAX. */
-void st_fitness_csv(const stFitnessLayout *layout, stFitnessCsv *csv);
+ST_API void st_fitness_csv(const stFitnessLayout *layout, stFitnessCsv *csv);
 
 /* The trials the best of generation G solved, from a run's fitness.csv: its header's
  * generation and best_t0, best_t1, ... columns (found by name: at most max of them, in the
  * first 64 columns), the values of G's row (1 for anything but "0"), *n of them. Read
  * through the bounded reader. ST_ERR_PARSE without those columns, with a short row or a bad
  * generation, or without G's row. */
-stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
+ST_API stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
                                   int *n, char *err, size_t errsz);
 
 #ifdef __cplusplus
