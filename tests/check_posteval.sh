@@ -146,10 +146,8 @@ kr=(integration configs/prims.cfg data/evolved/prims_s2/population.genome
 "$PE" "${kr[@]}" --threads 2 --out "$tmp/k1" > /dev/null 2>&1
 "$PE" "${kr[@]}" --threads 1 --journal-every 0 --out "$tmp/k2" > /dev/null 2>&1 &
 pid=$!
-for _ in $(seq 600); do  # until some trials are journalled, at most 60 s
-  [ "$(grep -c '^[0-9]' "$tmp/k2/posteval.journal" 2>/dev/null)" -ge 5 ] 2>/dev/null && break
-  sleep 0.1
-done
+journalled() { [ "$(grep -c '^[0-9]' "$tmp/k2/posteval.journal" 2>/dev/null)" -ge 5 ] 2>/dev/null; }
+wait_for 900 $pid journalled # until some trials are journalled (an event: no deadline)
 kill -9 $pid 2> /dev/null; wait $pid 2> /dev/null
 before=$(grep -c '^[0-9]' "$tmp/k2/posteval.journal" 2>/dev/null || echo 0)
 # what a kill -9 mid-write leaves (whether this one did depends on when it landed)
