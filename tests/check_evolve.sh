@@ -126,6 +126,29 @@ else
   grep -q "config.ini differs" "$tmp/diff.log" && ok "resume with another config refused" || ko "resume refused" "$(cat "$tmp/diff.log")"
 fi
 
+# --generations is the run's cap key (issue 48): config.ini records the cap the run was made
+# under. A run held after its first checkpoint (the fault shim), killed and resumed under another
+# --generations continues to that cap, and its files, config.ini with the new cap included, are
+# those of a run made under it from the start; a cap the checkpoint is past is refused
+touch "$tmp/hold"
+ST_FAULT_HOLD="$tmp/hold" LD_PRELOAD="$SHIM" "$EV" $cfg --seed 11 --generations $((G + 5)) --threads 2 \
+  --out "$tmp/cap" > /dev/null 2>&1 &
+pid=$!
+wait_for 900 $pid test -e "$tmp/cap/checkpoint"
+grep -qx "max_generations = $((G + 5))" "$tmp/cap/config.ini" && ck_cap=1 || ck_cap=0
+kill -9 $pid 2> /dev/null; wait $pid 2> /dev/null; rm -f "$tmp/hold"
+"$EV" $cfg --seed 11 --generations $G --threads 2 --out "$tmp/cap" --resume > "$tmp/cap.log" 2>&1; rc=$?
+"$EV" $cfg --seed 11 --generations 1 --threads 2 --out "$tmp/cap" --resume > /dev/null 2> "$tmp/cap1.err"; rc1=$?
+if [ $ck_cap = 1 ] && [ $rc = 0 ] && grep -qx "max_generations = $G" "$tmp/t1/config.ini" &&
+   same_files "$tmp/t1" "$tmp/cap" && [ $rc1 != 0 ] &&
+   grep -q "checkpoint:2: field 'generation': $G is out of range (expected an integer in \[1, 1\]" "$tmp/cap1.err"; then
+  ok "--generations is ga.max_generations in config.ini; resumed under another, the files of a run made under it"
+else ko "--generations recorded" "cap $ck_cap rc $rc/$rc1 $(tail -2 "$tmp/cap.log") $(cat "$tmp/cap1.err")"; fi
+expect "--generations breaking a cross-key rule is refused as the key would be" \
+  "evolve: --generations 3 (the run's ga.max_generations): key 'postures.vary_replace_generations': 5 generations of replace, and ga.max_generations = 3 ends the run" \
+  "$tmp/capx" "$EV" configs/main_prim.cfg --generations 3 --set postures.vary_starts=true \
+  --set postures.vary_trials=extra --set postures.vary_replace_generations=5 --out "$tmp/capx"
+
 # postures.vary_starts: main-prim open and grasp trials from drawn starts; thread-independent,
 # replayed trial by trial from the same draws (the harmonic mean of F_open and F_grasp and the
 # successes of the csv's last row), and other results than the fixed starts give

@@ -38,15 +38,17 @@ typedef struct stEvolveDef {
   const stConfig *cfg;
   const char *out_dir;
   int threads;     /* evaluation threads; 0: run.threads, or one per core */
-  int generations; /* > 0: stop after this many generations in all (else ga.max_generations) */
+  int generations; /* > 0: the run's cap key (ga.max_generations, in the integrated stage
+                      ga.integrated_generations) set to this: config.ini records it */
   int resume;      /* continue from out_dir/checkpoint when there is one */
   FILE *progress;  /* one line per generation; nullable */
   const stEvolveEvaluator *evaluator; /* nullable: evaluate on this process's threads */
 } stEvolveDef;
 
 /* Runs (or resumes) the stages cfg->stage_stages names. Refuses an unwritable directory, a
- * resume with a different configuration, or an unreadable initial population (integrated:
- * population files that cannot be assembled) before any evaluation. */
+ * resume with a different configuration (run.threads and the cap aside: a run continues under
+ * another cap, which its config.ini then records), or an unreadable initial population
+ * (integrated: population files that cannot be assembled) before any evaluation. */
 ST_API stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz);
 
 /* ---- evaluating elsewhere: an individual as a task ----
