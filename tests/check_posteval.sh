@@ -176,6 +176,21 @@ if [ $rc1 = 2 ] && grep -q 'posteval.journal:2: .* belongs to another test' "$tm
    cmp -s "$tmp/k1/summary.csv" "$tmp/k2/summary.csv"; then
   ok "resume refuses a journal of other keys (line 2) and a damaged line (line 7); the files stay"
 else ko "resume refusals" "$rc1 $(cat "$tmp/e1") / $rc2 $(cat "$tmp/e2")"; fi
+# the journal covers the robot model read from robot.urdf (issue 48: a URDF changed in place,
+# under the same key, left the journal resumable): a link's mass changed makes it another test's,
+# a comment added to the file (nothing the model holds) does not
+cp data/icub_left_arm.urdf "$tmp/arm.urdf"
+ku=(integration configs/prims.cfg data/evolved/prims_s2/population.genome --set robot.urdf="$tmp/arm.urdf"
+    --set posteval.integration_top=1 --set posteval.integration_trials=2 --set integrated.steps=5)
+"$PE" "${ku[@]}" --out "$tmp/u1" > /dev/null 2> "$tmp/u0.err"; rc0=$?
+sed -i '31s|<mass value="0.91179"/>|<mass value="0.91180"/>|' "$tmp/arm.urdf"
+"$PE" "${ku[@]}" --out "$tmp/u1" --resume > /dev/null 2> "$tmp/u1.err"; rc1=$?
+cp data/icub_left_arm.urdf "$tmp/arm.urdf" && echo '<!-- a comment: the same model -->' >> "$tmp/arm.urdf"
+"$PE" "${ku[@]}" --out "$tmp/u1" --resume > /dev/null 2> "$tmp/u2.err"; rc2=$?
+if [ $rc0 = 0 ] && [ $rc1 = 2 ] && grep -q 'posteval.journal:2: .* belongs to another test' "$tmp/u1.err" &&
+   [ $rc2 = 0 ]; then
+  ok "the journal covers the robot model: the URDF changed in place is refused, a comment added is not"
+else ko "journal and the URDF" "$rc0/$rc1/$rc2 $(cat "$tmp/u0.err" "$tmp/u1.err" "$tmp/u2.err" | tail -3)"; fi
 # the journal goes through the bounded reader (issue 17): a NUL byte, and a journal larger than
 # its units can fill, are refused
 cp -r "$tmp/k1" "$tmp/k4" && sed -i '6s/,/,\x00/' "$tmp/k4/posteval.journal"
