@@ -290,6 +290,19 @@ refused "two inputs with one run label" "have the same run label 'prims_s2'" \
   "$PE" integration configs/prims.cfg data/evolved/prims_s2 data/evolved/prims_s2/population.genome
 refused "--threads 0" "--threads '0': expected an integer >= 1" \
   "$PE" robustness configs/integrated_stct.cfg "$tmp/stct-s1" --threads 0
+# the exclusion rule's reader (issue 48): a trial's result neither 0 nor 1 (read as a success
+# before), a generation's row twice (the first was taken)
+for v in x "" 2; do
+  rm -rf "$tmp/stct-x" && cp -r "$tmp/stct-s1" "$tmp/stct-x"
+  awk -F, -v OFS=, -v v="$v" 'NR == 3 { $11 = v } { print }' "$tmp/stct-s1/fitness.csv" > "$tmp/stct-x/fitness.csv"
+  refused "the exclusion rule: best_t1 '$v' refused" "$tmp/stct-x/fitness.csv:3: best_t1 '$v' (expected 0 or 1" \
+    "$PE" generalisation configs/integrated_stct.cfg "$tmp/stct-x" "${gen[@]}"
+done
+rm -rf "$tmp/stct-x" && cp -r "$tmp/stct-s1" "$tmp/stct-x"
+{ cat "$tmp/stct-s1/fitness.csv"; tail -1 "$tmp/stct-s1/fitness.csv"; } > "$tmp/stct-x/fitness.csv"
+refused "the exclusion rule: a generation's row twice refused" \
+  "$tmp/stct-x/fitness.csv:4: generation 1 after 1 (expected one row per generation, in increasing order)" \
+  "$PE" generalisation configs/integrated_stct.cfg "$tmp/stct-x" "${gen[@]}"
 touch "$tmp/afile"
 rm -rf "$tmp/bad"
 "$PE" robustness configs/integrated_stct.cfg "$tmp/stct-s1" --out "$tmp/afile/sub" > /dev/null 2> "$tmp/e"

@@ -63,8 +63,9 @@ typedef struct stPredScore {
 } stPredScore;
 
 /* Scores one trial. ST_ERR_ARG (naming the step) for n < 2, a word outside -1..3, no word
- * at a step t >= 1 (every step after the first must hear one: caretaker.first_step = 1), or an
- * output that is not finite or beyond +-ST_PRED_OUTPUT_MAX. */
+ * at a step t >= 1 (every step after the first must hear one: caretaker.first_step = 1), a
+ * word before the previous one (the caretaker never goes back), or an output that is not
+ * finite or beyond +-ST_PRED_OUTPUT_MAX. */
 ST_API stStatus st_pred_trial(const stPredDef *def, const stPredTrial *t, stPredScore *s, char *err,
                        size_t errsz);
 
