@@ -253,7 +253,7 @@ FUZZ_CXX ?= clang++
 FUZZ_DIR := build-fuzz
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_FLAGS := -g -O1 $(FUZZ_SAN) -fsanitize=fuzzer-no-link
-FUZZ_TARGETS := config genome urdf checkpoint journal score stats page
+FUZZ_TARGETS := config genome urdf checkpoint journal score stats page fitness
 # the library but its two OpenMP modules (evolution, the parallel post-evaluation)
 FUZZ_LIB := $(filter-out run/evolve posteval/postrun,$(patsubst lib/%,%,$(basename $(CORE_SRC) $(SIM_SRC))))
 FUZZ_OBJ := $(FUZZ_LIB:%=$(FUZZ_DIR)/obj/%.o)
@@ -295,6 +295,7 @@ FUZZ_SEEDS_journal := tests/fuzz/seeds/journal/*
 FUZZ_SEEDS_score := tests/fuzz/seeds/score/*
 FUZZ_SEEDS_stats := tests/fuzz/seeds/stats/*
 FUZZ_SEEDS_page := tests/fuzz/seeds/page/*
+FUZZ_SEEDS_fitness := data/evolved/unchained/*/fitness.csv
 $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 	@mkdir -p $(@D)
 	@for f in $(wildcard $(FUZZ_SEEDS_$*) tests/fuzz/regressions/$*/*); do \

@@ -262,7 +262,9 @@ static void test_fitness_csv_successes(void) {
       {"generation,best_t0,best_t1\n1,1,1\n0,0,0\n", ":3: generation 0 after 1"},
       {"generation,best_t0,best_t1\n0,1,1\n1,0\n", ":3: 2 fields (expected 3, as the header)"},
       {"generation,best_t0,best_t1\n0,1,1,1\n", ":2: 4 fields (expected 3, as the header)"},
-      {"generation,best_t0,best_t1\n-1,1,1\n", ":2: generation '-1' (expected an integer >= 0)"},
+      {"generation,best_t0,best_t1\n-1,1,1\n", ":2: generation '-1' (expected an integer >= 0 as evolve writes it)"},
+      {"generation,best_t0,best_t1\n0,1,1\n01,1,1\n", ":3: generation '01' (expected an integer >= 0"},
+      {"generation,best_t0,best_t1\n 0,1,1\n", ":2: generation ' 0' (expected an integer >= 0"},
       {"generation,best_t0,best_t0\n0,1,1\n", ":1: column 'best_t0' twice (expected each column once)"},
   };
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {

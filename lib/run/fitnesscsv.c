@@ -8,6 +8,7 @@
 
 #include "core/internal.h"
 #include "selftalk/io.h"
+#include "run/fitnesscsv_parse.h"
 
 #define R stFitnessRow
 #define P ST_FITNESS_PRIMITIVE
@@ -126,13 +127,27 @@ static int trial_columns(char *header, int *nf, int *gcol, int *tcol, int max, c
 /* issue 48: strict. Every row as long as the header, its generation an integer above the
  * previous row's (a duplicated or unordered generation is refused, not the first taken), every
  * trial's column 0 or 1 (an empty or 'x' value was read as a success) */
-stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
-                                  int *n, char *err, size_t errsz) {
-  ST_ASSERT(path && success && n && max >= 0 && max <= ST_FITNESS_MAX_TRIALS);
-  char *text;
-  size_t len;
-  stStatus st = st_text_read(path, ST_FILE_MAX, &text, &len, err, errsz);
-  if (st) return st;
+/* an integer >= 0 as "%d" prints it: no sign, space or leading zero */
+static int canonical_int(const char *v) {
+  if (!v[0] || (v[0] == '0' && v[1])) return 0;
+  for (const char *c = v; *c; c++)
+    if (*c < '0' || *c > '9') return 0;
+  return 1;
+}
+
+typedef struct successesAsk {
+  int generation, max;
+  uint8_t *success;
+  int *n;
+} successesAsk;
+
+static stStatus parse_successes(const char *path, char *text, size_t len, void *ctx, char *err,
+                                size_t errsz) {
+  const successesAsk *a = ctx;
+  const int generation = a->generation, max = a->max;
+  uint8_t *success = a->success;
+  int *n = a->n;
+  stStatus st = ST_OK;
   int gcol = -1, tcol[ST_FITNESS_MAX_TRIALS], nf_head = 0, lineno = 0, found = 0, prev = -1;
   char first[32];
   snprintf(first, sizeof first, trial_family()->name, 0);
@@ -164,10 +179,10 @@ stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *suc
                nf_head);
       break;
     }
-    if (st__parse_int(fld[gcol], &g) || g < 0) {
+    if (!canonical_int(fld[gcol]) || st__parse_int(fld[gcol], &g)) {
       st = ST_ERR_PARSE;
-      st__errf(err, errsz, "%s:%d: %s '%s' (expected an integer >= 0)", path, lineno,
-               GENERATION->name, fld[gcol]);
+      st__errf(err, errsz, "%s:%d: %s '%s' (expected an integer >= 0 as evolve writes it)",
+               path, lineno, GENERATION->name, fld[gcol]);
       break;
     }
     if (g <= prev) {
@@ -190,11 +205,26 @@ stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *suc
     }
     found |= g == generation;
   }
-  free(text);
   if (!st && !found) {
     st = ST_ERR_PARSE;
     st__errf(err, errsz, "%s: no row for generation %d, the last of best.genome (expected the "
              "run's own fitness.csv)", path, generation);
   }
   return st;
+}
+
+stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
+                                  int *n, char *err, size_t errsz) {
+  ST_ASSERT(path && success && n && max >= 0 && max <= ST_FITNESS_MAX_TRIALS);
+  successesAsk a = {generation, max, success, n};
+  return st__text_read_parse(path, parse_successes, &a, err, errsz);
+}
+
+stStatus st__fitness_csv_successes_parse(const char *name, const char *text, size_t len,
+                                         int generation, uint8_t *success, int max, int *n,
+                                         char *err, size_t errsz) {
+  ST_ASSERT(name && (text || !len) && success && n && max >= 0 && max <= ST_FITNESS_MAX_TRIALS);
+  successesAsk a = {generation, max, success, n};
+  *n = 0;
+  return st__text_parse(name, text, len, parse_successes, &a, err, errsz);
 }
