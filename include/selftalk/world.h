@@ -171,10 +171,11 @@ ST_API void st_dyn_def_from_config(const stConfig *cfg, stDynDef *def);
  * outlive the world). Fails with ST_ERR_RANGE on a bad def (e.g. a control step that is not a
  * whole number of sub-steps) and ST_ERR_MODEL when the model cannot be simulated (a moving
  * link without mass, a bad inertia, an unsupported geometry); err names the cause. The world
- * must be reset (st_world_reset) before it is stepped. With solver quickstep, creation checks
- * once per process that ODE's random generator is the library's per-world one (see
- * docs/PROTOCOL.md, "Dynamic mode"); when it is not, the world uses solver step instead and
- * st_world_dynamic_info reports it. */
+ * must be reset (st_world_reset) before it is stepped. ST_ERR_RANGE, saying why, for an ODE
+ * that is not double precision, for solver quickstep where ODE's random generator cannot be the
+ * library's per-world one, and for lcp schur where ODE's LCP cannot reach the library's (both:
+ * in a program linked with the shared library, or with another ODE than 0.16.2: checked once
+ * per process with a probe step; docs/PROTOCOL.md, "Dynamic mode"). */
 ST_API stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, const stDynDef *def,
                                  stWorld **world, char *err, size_t errsz);
 
