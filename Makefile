@@ -57,8 +57,13 @@ EVOLVE_CC = $(if $(HAVE_MPI),OMPI_CC="$(CC)" MPICH_CC="$(CC)" $(MPICC) -DST_WITH
 CPPFLAGS_ALL = -Iinclude -Ilib $(PKG_CFLAGS)
 # release builds (the default) leave ST_ASSERT out: it never changes a result, only stops early
 ASSERT_FLAGS := $(if $(filter 1,$(ASSERTS)),-DST_ASSERTS)
-CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(SAN) $(ASSERT_FLAGS) $(CFLAGS)
-CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(SAN) $(CXXFLAGS)
+# -fvisibility=hidden: the shared libraries export the public functions (ST_API, selftalk/base.h)
+# and nothing else; tools/libselftalk.map keeps out what the compilers export all the same
+VISIBILITY := -fvisibility=hidden
+CFLAGS_ALL := -std=c99 $(WARN) $(OPT) -fPIC -fopenmp $(VISIBILITY) $(SAN) $(ASSERT_FLAGS) $(CFLAGS)
+CXXFLAGS_ALL := -std=c++17 -Wall -Wextra $(OPT) -fPIC -fopenmp $(VISIBILITY) -fvisibility-inlines-hidden \
+  $(SAN) $(CXXFLAGS)
+SO_EXPORTS := tools/libselftalk.map
 
 # lib/ by layer: core (network, GA, config, genomes, statistics: no simulator, so a robot
 # controller can link them alone), model (URDF, kinematics), world (kinematic and ODE
@@ -137,11 +142,13 @@ $(CORE_A): $(CORE_OBJ)
 $(FULL_A): $(CORE_OBJ) $(SIM_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
-$(CORE_SO): $(CORE_OBJ)
-	$(CC) -shared $(SAN) -Wl,-soname,libselftalk-core.so.0 -o $@ $^ $(LIBS_CORE)
+$(CORE_SO): $(CORE_OBJ) $(SO_EXPORTS)
+	$(CC) -shared $(SAN) -Wl,-soname,libselftalk-core.so.0 -Wl,--version-script=$(SO_EXPORTS) \
+	  -o $@ $(CORE_OBJ) $(LIBS_CORE)
 
-$(FULL_SO): $(CORE_OBJ) $(SIM_OBJ)
-	$(CXX) -shared $(SAN) -fopenmp -Wl,-soname,libselftalk.so.0 -o $@ $^ $(LIBS_SIM) $(LIBS_CORE)
+$(FULL_SO): $(CORE_OBJ) $(SIM_OBJ) $(SO_EXPORTS)
+	$(CXX) -shared $(SAN) -fopenmp -Wl,-soname,libselftalk.so.0 -Wl,--version-script=$(SO_EXPORTS) \
+	  -o $@ $(CORE_OBJ) $(SIM_OBJ) $(LIBS_SIM) $(LIBS_CORE)
 
 # apps link the static library: they run from the source tree without LD_LIBRARY_PATH
 $(APPDIR)/%: apps/%.c $(APP_COMMON) apps/app_common.h $(FULL_A) $(HEADERS)
@@ -209,7 +216,17 @@ FAULT_SHIM := $(BUILD)/fault_shim.so
 $(FAULT_SHIM): tests/faults/fault_shim.c | $(BUILD)/obj
 	$(CC) -std=c99 $(WARN) -O2 -fPIC -shared -o $@ $< -ldl
 
-test-only: all $(TEST_BIN) $(FAULT_SHIM) $(BUILD)/page_check
+# a host program that uses ODE itself (tests/check_link.sh): ODE alone, with the shared library,
+# with the static library; the same host lines in all three
+LINK_HOSTS := $(BUILD)/ode_host_plain $(BUILD)/ode_host_shared $(BUILD)/ode_host_static
+$(BUILD)/ode_host_plain: tests/link/ode_host.c | $(BUILD)/obj
+	$(CC) $(CFLAGS_ALL) $(PKG_CFLAGS) -o $@ $< $(LIBS_SIM)
+$(BUILD)/ode_host_shared: tests/link/ode_host.c $(FULL_SO) $(HEADERS) | $(BUILD)/obj
+	$(CC) -DWITH_SELFTALK $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_SO) $(LIBS_SIM) $(LIBS_CORE)
+$(BUILD)/ode_host_static: tests/link/ode_host.c $(FULL_A) $(HEADERS) | $(BUILD)/obj
+	$(CC) -DWITH_SELFTALK $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
+
+test-only: all $(TEST_BIN) $(FAULT_SHIM) $(BUILD)/page_check $(LINK_HOSTS)
 	+@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
 
 asan-only:
@@ -237,7 +254,7 @@ FUZZ_CXX ?= clang++
 FUZZ_DIR := build-fuzz
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_FLAGS := -g -O1 $(FUZZ_SAN) -fsanitize=fuzzer-no-link
-FUZZ_TARGETS := config genome urdf checkpoint journal score stats page
+FUZZ_TARGETS := config genome urdf checkpoint journal score stats page fitness
 # the library but its two OpenMP modules (evolution, the parallel post-evaluation)
 FUZZ_LIB := $(filter-out run/evolve posteval/postrun,$(patsubst lib/%,%,$(basename $(CORE_SRC) $(SIM_SRC))))
 FUZZ_OBJ := $(FUZZ_LIB:%=$(FUZZ_DIR)/obj/%.o)
@@ -279,6 +296,7 @@ FUZZ_SEEDS_journal := tests/fuzz/seeds/journal/*
 FUZZ_SEEDS_score := tests/fuzz/seeds/score/*
 FUZZ_SEEDS_stats := tests/fuzz/seeds/stats/*
 FUZZ_SEEDS_page := tests/fuzz/seeds/page/*
+FUZZ_SEEDS_fitness := data/evolved/unchained/*/fitness.csv
 $(FUZZ_DIR)/corpus/%/.seeded: tests/fuzz/fuzz_%.c
 	@mkdir -p $(@D)
 	@for f in $(wildcard $(FUZZ_SEEDS_$*) tests/fuzz/regressions/$*/*); do \

@@ -7,6 +7,8 @@
  * Prints one progress line per generation; writes config.ini, fitness.csv, best.genome,
  * population.genome and an atomic checkpoint into DIR (default runs/CONFIGNAME-sSEED).
  * --resume continues a killed run from DIR/checkpoint and ends with the same files.
+ * --generations N is the run's cap, ga.max_generations (ga.integrated_generations in the
+ * integrated stage) set to N: config.ini records it; a resumed run may take another cap.
  *
  * Under mpirun (built with MPI: evolve_mpi.h) rank 0 does all of the above and the other ranks
  * evaluate the individuals; the files are the same for any number of ranks. */

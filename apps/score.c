@@ -7,7 +7,8 @@
  * prediction: the prediction fitness (eq. 2.15-2.24, selftalk/prediction.h). FILE has one row
  * per step, "step,word,o_reach,o_open,o_grasp,o_move": the step (0, 1, 2, ... within a trial),
  * the caretaker's word given at that step (0-3 reach, open, grasp, move; -1 none) and the four
- * linguistic outputs of the network at that step (finite, within +-ST_PRED_OUTPUT_MAX). Trials
+ * linguistic outputs of the network at that step (finite, within +-ST_PRED_OUTPUT_MAX); within a
+ * trial the words never go back (the caretaker's order, words jumped aside). Trials
  * are separated by blank lines; lines starting with '#' are skipped, and so is a header line
  * starting with "step" before the first row (a later one is refused). No field may be empty. Every trial is treated
  * as one whose object reached the target. Prints
@@ -97,6 +98,11 @@ static void parse_row(const char *path, int lineno, char *line, int expect_step,
   if (end == field[1] || *end || word < -1 || word > 3)
     app_die(prog, "%s:%d: word '%s' (expected -1 for none or 0-3: reach, open, grasp, move)",
             path, lineno, field[1]);
+  /* the caretaker gives reach, open, grasp, move in order, jumping some, never going back */
+  const int prev = expect_step > 0 ? t->word[t->n - 1] : -1;
+  if (word < prev)
+    app_die(prog, "%s:%d: word %ld after %d (expected the caretaker's words in order, never "
+            "back: -1 none, then 0-3 reach, open, grasp, move)", path, lineno, word, prev);
   double o[ST_PRED_NWORDS];
   for (int m = 0; m < ST_PRED_NWORDS; m++) {
     errno = 0;

@@ -5,6 +5,10 @@ set -uo pipefail
 CHECK=check_evolve
 source "$(dirname "$0")/check_lib.sh"
 EV="$APPDIR/evolve"
+# the fault shim holds a run after a checkpoint while $tmp/hold exists (ST_FAULT_HOLD): a test
+# acts on a running run at an event, not after a delay a busy machine would miss
+SHIM="$PWD/${BUILD:-build}/fault_shim.so"
+export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0 # the shim before libasan
 cfg=configs/simple_prim.cfg
 G=8
 
@@ -121,6 +125,28 @@ if "$EV" $cfg --seed 12 --generations $G --out "$tmp/k" --resume > "$tmp/diff.lo
 else
   grep -q "config.ini differs" "$tmp/diff.log" && ok "resume with another config refused" || ko "resume refused" "$(cat "$tmp/diff.log")"
 fi
+
+# --generations is the run's cap key (issue 48): config.ini records the cap the run was made
+# under. A run held after its first checkpoint (the fault shim), killed and resumed under another
+# --generations continues to that cap, and its files, config.ini with the new cap included, are
+# those of a run made under it from the start; a cap the checkpoint is past is refused
+touch "$tmp/hold"
+ST_FAULT_HOLD="$tmp/hold" LD_PRELOAD="$SHIM" "$EV" $cfg --seed 11 --generations $((G + 5)) --threads 2 \
+  --out "$tmp/cap" > /dev/null 2>&1 &
+pid=$!
+wait_for 900 $pid test -e "$tmp/cap/checkpoint"
+grep -qx "max_generations = $((G + 5))" "$tmp/cap/config.ini" && ck_cap=1 || ck_cap=0
+kill -9 $pid 2> /dev/null; wait $pid 2> /dev/null; rm -f "$tmp/hold"
+"$EV" $cfg --seed 11 --generations $G --threads 2 --out "$tmp/cap" --resume > "$tmp/cap.log" 2>&1; rc=$?
+"$EV" $cfg --seed 11 --generations 1 --threads 2 --out "$tmp/cap" --resume > /dev/null 2> "$tmp/cap1.err"; rc1=$?
+if [ $ck_cap = 1 ] && [ $rc = 0 ] && grep -qx "max_generations = $G" "$tmp/t1/config.ini" &&
+   same_files "$tmp/t1" "$tmp/cap" && [ $rc1 != 0 ] &&
+   grep -q "checkpoint:2: field 'generation': $G is out of range (expected an integer in \[1, 1\]" "$tmp/cap1.err"; then
+  ok "--generations is ga.max_generations in config.ini; resumed under another, the files of a run made under it"
+else ko "--generations recorded" "cap $ck_cap rc $rc/$rc1 $(tail -2 "$tmp/cap.log") $(cat "$tmp/cap1.err")"; fi
+expect "--generations out of the key's range is refused as the key would be" \
+  "evolve: --generations 10000001 (the run's ga.max_generations): key 'ga.max_generations': 10000001 is out of range (expected an integer in [1, 10000000])" \
+  "$tmp/capx" "$EV" $cfg --generations 10000001 --out "$tmp/capx"
 
 # postures.vary_starts: main-prim open and grasp trials from drawn starts; thread-independent,
 # replayed trial by trial from the same draws (the harmonic mean of F_open and F_grasp and the
@@ -287,11 +313,14 @@ fi
 # killed and resumed: the elite is the checkpointed population's genotype 0, nothing more
 el4=("${el[@]}" --generations 4)
 "$EV" configs/main_prim.cfg "${el4[@]}" --threads 1 --out "$tmp/e4" > /dev/null 2>&1
-"$EV" configs/main_prim.cfg "${el4[@]}" --threads 2 --out "$tmp/ek" > /dev/null 2>&1 &
+touch "$tmp/hold" # held after its first checkpoint (the fault shim), however busy the machine
+ST_FAULT_HOLD="$tmp/hold" LD_PRELOAD="$SHIM" "$EV" configs/main_prim.cfg "${el4[@]}" --threads 2 \
+  --out "$tmp/ek" > /dev/null 2>&1 &
 pid=$!
-for _ in $(seq 300); do grep -qs '^1,' "$tmp/ek/fitness.csv" && break; sleep 0.05; done
+wait_for 900 $pid test -e "$tmp/ek/checkpoint"
 kill -9 $pid 2>/dev/null
 wait $pid 2>/dev/null
+rm -f "$tmp/hold"
 done_before=$(($(wc -l < "$tmp/ek/fitness.csv") - 1))
 "$EV" configs/main_prim.cfg "${el4[@]}" --threads 1 --out "$tmp/ek" --resume > "$tmp/ek.log" 2>&1
 if [ "$done_before" -ge 1 ] && [ "$done_before" -lt 4 ] && same_files "$tmp/e4" "$tmp/ek"; then

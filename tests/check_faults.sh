@@ -53,15 +53,12 @@ run_bg() {
   pid=$!
 }
 
-# waits until DIR/fitness.csv has N generations (or the run ended)
-wait_rows() { # DIR N
-  for _ in $(seq 500); do
-    [ "$(wc -l 2> /dev/null < "$1/fitness.csv" || echo 0)" -gt "$2" ] && return 0
-    kill -0 "$pid" 2> /dev/null || return 1
-    sleep 0.02
-  done
-  return 1
+# waits until the run holds after its first checkpoint (the shim's ST_FAULT_HOLD: $tmp/hold);
+# release lets it go on
+wait_held() { # DIR
+  wait_for 900 "$pid" test -e "$1/checkpoint"
 }
+release() { rm -f "$tmp/hold"; }
 
 # ---- a full disk
 if [ $can_mount = 1 ]; then
@@ -77,24 +74,27 @@ run_bg "$tmp/sync" LD_PRELOAD="$SHIM" ST_FAULT_FSYNC_AT=12; wait $pid; rc=$?
 stopped "fsync fails (ENOSPC)" "$tmp/sync" $rc "cannot write: No space left on device"
 
 # ---- the output directory becomes read-only mid-run
-# the run writes through a slow disk (the shim: 40 ms per rename, no file open meanwhile), so
-# the generations left after the third take seconds on any machine: the directory turns
-# read-only mid-run, not after a run that a fast machine already finished
-slow=(LD_PRELOAD="$SHIM" ST_FAULT_SLOW_RENAME_MS=40)
+# the run holds after its first checkpoint (the shim: no file open, no temporary file waiting)
+# until the directory is read-only: mid-run on any machine, however fast or busy (issue 48)
+held=(LD_PRELOAD="$SHIM" ST_FAULT_HOLD="$tmp/hold")
 if [ $can_mount = 1 ]; then
   tmpfs "$tmp/ro" 8m
-  run_bg "$tmp/ro/run" "${slow[@]}"
-  wait_rows "$tmp/ro/run" 3
+  touch "$tmp/hold"
+  run_bg "$tmp/ro/run" "${held[@]}"
+  wait_held "$tmp/ro/run"
   # the remount waits for a moment no file is open for writing
   for _ in $(seq 400); do mount -o remount,ro "$tmp/ro" 2> /dev/null && break; sleep 0.005; done
+  release
   wait $pid; rc=$?
   mount -o remount,rw "$tmp/ro"
   stopped "read-only directory mid-run (tmpfs remounted)" "$tmp/ro/run" $rc "Read-only file system"
 elif [ "$(id -u)" != 0 ]; then
   mkdir -p "$tmp/ro"
-  run_bg "$tmp/ro" "${slow[@]}"
-  wait_rows "$tmp/ro" 3
+  touch "$tmp/hold"
+  run_bg "$tmp/ro" "${held[@]}"
+  wait_held "$tmp/ro"
   chmod a-w "$tmp/ro"
+  release
   wait $pid; rc=$?
   chmod u+w "$tmp/ro"
   stopped "read-only directory mid-run (chmod)" "$tmp/ro" $rc "Permission denied"

@@ -54,19 +54,23 @@ printf '0,-1,0.9,0.1,0.1,0.1\n2,0,0.9,0.1,0.1,0.1\n' > "$tmp/bad1.csv"
 printf '0,-1,0.9,0.1,0.1,0.1\n1,7,0.9,0.1,0.1,0.1\n' > "$tmp/bad2.csv"
 printf '0,-1,0.9,0.1,0.1\n' > "$tmp/bad3.csv"
 printf '0,-1,0.9,0.1,0.1,0.1\n1,0,0.9,0.1,0.1,0.1\n2,-1,0.9,0.1,0.1,0.1\n' > "$tmp/bad4.csv"
+# the caretaker's words never go back (issue 48: grasp after move was scored)
+printf '0,-1,0.9,0.1,0.1,0.1\n1,0,0.9,0.1,0.1,0.1\n2,3,0.9,0.1,0.1,0.1\n3,2,0.9,0.1,0.1,0.1\n\n0,-1,0.9,0.1,0.1,0.1\n1,1,0.9,0.1,0.1,0.1\n' > "$tmp/bad10.csv"
 "$APPDIR/score" prediction "$tmp/bad1.csv" > /dev/null 2> "$tmp/e1"; r1=$?
 "$APPDIR/score" prediction "$tmp/bad2.csv" > /dev/null 2> "$tmp/e2"; r2=$?
 "$APPDIR/score" prediction "$tmp/bad3.csv" > /dev/null 2> "$tmp/e3"; r3=$?
 "$APPDIR/score" prediction "$tmp/bad4.csv" > /dev/null 2> "$tmp/e4"; r4=$?
 "$APPDIR/score" integrated "$tmp/pred.csv" > /dev/null 2> "$tmp/e5"; r5=$?
+"$APPDIR/score" prediction "$tmp/bad10.csv" > /dev/null 2> "$tmp/e10"; r10=$?
 if [ $r1 = 2 ] && grep -q "bad1.csv:2: step '2' (expected 1" "$tmp/e1" &&
    [ $r2 = 2 ] && grep -q "bad2.csv:2: word '7' (expected -1 for none or 0-3" "$tmp/e2" &&
    [ $r3 = 2 ] && grep -q "bad3.csv:1: 5 fields (expected 6" "$tmp/e3" &&
-   [ $r4 = 2 ] && grep -q "trial 0: prediction: step 2: no word" "$tmp/e4" &&
-   [ $r5 = 2 ] && grep -q "'integrated': unknown fitness (expected prediction)" "$tmp/e5"; then
-  ok "score refuses bad rows naming FILE:LINE, and unknown fitness functions"
+   [ $r4 = 2 ] && grep -q "bad4.csv:3: word -1 after 0 (expected the caretaker's words in order, never back" "$tmp/e4" &&
+   [ $r5 = 2 ] && grep -q "'integrated': unknown fitness (expected prediction)" "$tmp/e5" &&
+   [ $r10 = 2 ] && grep -q "bad10.csv:4: word 2 after 3 (expected the caretaker's words in order, never back" "$tmp/e10"; then
+  ok "score refuses bad rows naming FILE:LINE (words going back too), and unknown fitness functions"
 else
-  ko "score refusals" "$(cat "$tmp"/e[1-5])"
+  ko "score refusals" "$(cat "$tmp"/e[1-5] "$tmp/e10")"
 fi
 # rows with an empty field (strtok took ",," for one comma), a second header line (skipped
 # anywhere before), finite outputs whose differences overflow (1 - (h1 - o) = -inf)

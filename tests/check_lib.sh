@@ -8,6 +8,18 @@ pass=0 fail=0
 ok() { echo "$CHECK: $1 ok"; pass=$((pass + 1)); }
 ko() { echo "$CHECK: $1 FAILED${2:+: $2}"; fail=$((fail + 1)); }
 
+# waits for an event, not a deadline (issue 48: a busy machine made fixed waits race): polls
+# until CMD succeeds (0), or PID has ended and CMD still fails (1), or TIMEOUT seconds have
+# passed (2: generous, only so that a hang fails the check instead of the suite)
+wait_for() { # TIMEOUT PID CMD...
+  local timeout=$1 pid=$2 end=$((SECONDS + $1)); shift 2
+  while ! "$@"; do
+    if ! kill -0 "$pid" 2> /dev/null; then "$@"; return $(($? ? 1 : 0)); fi
+    [ $SECONDS -ge $end ] && { echo "wait_for: ${timeout}s passed waiting for: $*" >&2; return 2; }
+    sleep 0.1
+  done
+}
+
 # the five files of two run directories are identical
 same_files() { # DIR1 DIR2: the five files byte for byte, and no temporary file left in DIR2
   for f in config.ini fitness.csv best.genome population.genome checkpoint; do

@@ -146,10 +146,8 @@ kr=(integration configs/prims.cfg data/evolved/prims_s2/population.genome
 "$PE" "${kr[@]}" --threads 2 --out "$tmp/k1" > /dev/null 2>&1
 "$PE" "${kr[@]}" --threads 1 --journal-every 0 --out "$tmp/k2" > /dev/null 2>&1 &
 pid=$!
-for _ in $(seq 600); do  # until some trials are journalled, at most 60 s
-  [ "$(grep -c '^[0-9]' "$tmp/k2/posteval.journal" 2>/dev/null)" -ge 5 ] 2>/dev/null && break
-  sleep 0.1
-done
+journalled() { [ "$(grep -c '^[0-9]' "$tmp/k2/posteval.journal" 2>/dev/null)" -ge 5 ] 2>/dev/null; }
+wait_for 900 $pid journalled # until some trials are journalled (an event: no deadline)
 kill -9 $pid 2> /dev/null; wait $pid 2> /dev/null
 before=$(grep -c '^[0-9]' "$tmp/k2/posteval.journal" 2>/dev/null || echo 0)
 # what a kill -9 mid-write leaves (whether this one did depends on when it landed)
@@ -178,6 +176,21 @@ if [ $rc1 = 2 ] && grep -q 'posteval.journal:2: .* belongs to another test' "$tm
    cmp -s "$tmp/k1/summary.csv" "$tmp/k2/summary.csv"; then
   ok "resume refuses a journal of other keys (line 2) and a damaged line (line 7); the files stay"
 else ko "resume refusals" "$rc1 $(cat "$tmp/e1") / $rc2 $(cat "$tmp/e2")"; fi
+# the journal covers the robot model read from robot.urdf (issue 48: a URDF changed in place,
+# under the same key, left the journal resumable): a link's mass changed makes it another test's,
+# a comment added to the file (nothing the model holds) does not
+cp data/icub_left_arm.urdf "$tmp/arm.urdf"
+ku=(integration configs/prims.cfg data/evolved/prims_s2/population.genome --set robot.urdf="$tmp/arm.urdf"
+    --set posteval.integration_top=1 --set posteval.integration_trials=2 --set integrated.steps=5)
+"$PE" "${ku[@]}" --out "$tmp/u1" > /dev/null 2> "$tmp/u0.err"; rc0=$?
+sed -i '31s|<mass value="0.91179"/>|<mass value="0.91180"/>|' "$tmp/arm.urdf"
+"$PE" "${ku[@]}" --out "$tmp/u1" --resume > /dev/null 2> "$tmp/u1.err"; rc1=$?
+cp data/icub_left_arm.urdf "$tmp/arm.urdf" && echo '<!-- a comment: the same model -->' >> "$tmp/arm.urdf"
+"$PE" "${ku[@]}" --out "$tmp/u1" --resume > /dev/null 2> "$tmp/u2.err"; rc2=$?
+if [ $rc0 = 0 ] && [ $rc1 = 2 ] && grep -q 'posteval.journal:2: .* belongs to another test' "$tmp/u1.err" &&
+   [ $rc2 = 0 ]; then
+  ok "the journal covers the robot model: the URDF changed in place is refused, a comment added is not"
+else ko "journal and the URDF" "$rc0/$rc1/$rc2 $(cat "$tmp/u0.err" "$tmp/u1.err" "$tmp/u2.err" | tail -3)"; fi
 # the journal goes through the bounded reader (issue 17): a NUL byte, and a journal larger than
 # its units can fill, are refused
 cp -r "$tmp/k1" "$tmp/k4" && sed -i '6s/,/,\x00/' "$tmp/k4/posteval.journal"
@@ -277,6 +290,19 @@ refused "two inputs with one run label" "have the same run label 'prims_s2'" \
   "$PE" integration configs/prims.cfg data/evolved/prims_s2 data/evolved/prims_s2/population.genome
 refused "--threads 0" "--threads '0': expected an integer >= 1" \
   "$PE" robustness configs/integrated_stct.cfg "$tmp/stct-s1" --threads 0
+# the exclusion rule's reader (issue 48): a trial's result neither 0 nor 1 (read as a success
+# before), a generation's row twice (the first was taken)
+for v in x "" 2; do
+  rm -rf "$tmp/stct-x" && cp -r "$tmp/stct-s1" "$tmp/stct-x"
+  awk -F, -v OFS=, -v v="$v" 'NR == 3 { $11 = v } { print }' "$tmp/stct-s1/fitness.csv" > "$tmp/stct-x/fitness.csv"
+  refused "the exclusion rule: best_t1 '$v' refused" "$tmp/stct-x/fitness.csv:3: best_t1 '$v' (expected 0 or 1" \
+    "$PE" generalisation configs/integrated_stct.cfg "$tmp/stct-x" "${gen[@]}"
+done
+rm -rf "$tmp/stct-x" && cp -r "$tmp/stct-s1" "$tmp/stct-x"
+{ cat "$tmp/stct-s1/fitness.csv"; tail -1 "$tmp/stct-s1/fitness.csv"; } > "$tmp/stct-x/fitness.csv"
+refused "the exclusion rule: a generation's row twice refused" \
+  "$tmp/stct-x/fitness.csv:4: generation 1 after 1 (expected one row per generation, in increasing order)" \
+  "$PE" generalisation configs/integrated_stct.cfg "$tmp/stct-x" "${gen[@]}"
 touch "$tmp/afile"
 rm -rf "$tmp/bad"
 "$PE" robustness configs/integrated_stct.cfg "$tmp/stct-s1" --out "$tmp/afile/sub" > /dev/null 2> "$tmp/e"

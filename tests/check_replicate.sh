@@ -152,13 +152,10 @@ elif grep -qF "interim: no integrated run in $tmp/i is complete yet" "$tmp/e" &&
 else ko "interim with no complete run" "$(cat "$tmp/e")"; fi
 
 # killed while its integrated runs evolve, then started again: the same files
+# (an event, not a deadline: on a busy machine the primitive runs before it take minutes)
 setsid $REP OUT="$tmp/b" > "$tmp/b.out" 2>&1 &
 pid=$!
-for _ in $(seq 1 600); do
-  [ -e "$tmp/b/int-stct-s1/checkpoint" ] && break
-  kill -0 $pid 2> /dev/null || break
-  sleep 0.1
-done
+wait_for 1800 $pid test -e "$tmp/b/int-stct-s1/checkpoint"
 kill -TERM -- -$pid 2> /dev/null
 wait $pid 2> /dev/null
 if [ -e "$tmp/b/int-stct-s1/checkpoint" ] && [ ! -e "$tmp/b/report.md" ]; then
@@ -194,13 +191,17 @@ if [ -z "$diffs" ]; then ok "the resumed replication's files equal the uninterru
 # stopped after a run finished but before make saw it end (a wrapper that pauses after evolve):
 # make must not delete the run's population.genome, which a resume of the finished run does
 # not write again
-printf '#!/bin/sh\n"%s/apps/evolve" "$@" || exit $?\ntouch "%s/finished"\nsleep 30\n' "$PWD" "$tmp" > "$tmp/slow"
+# (the wrapper waits until the test removes its hold file: no deadline for the test to meet)
+printf '#!/bin/sh\n"%s/apps/evolve" "$@" || exit $?\ntouch "%s/finished"\nwhile [ -e "%s/hold" ]; do sleep 0.1; done\n' \
+  "$PWD" "$tmp" "$tmp" > "$tmp/slow"
 chmod +x "$tmp/slow"
+touch "$tmp/hold"
 setsid $REP OUT="$tmp/d" EVOLVE="$tmp/slow" "$tmp/d/prims-s1/population.genome" > "$tmp/d.out" 2>&1 &
 pid=$!
-for _ in $(seq 1 600); do [ -e "$tmp/finished" ] && break; sleep 0.1; done
+wait_for 1800 $pid test -e "$tmp/finished"
 kill -TERM -- -$pid 2> /dev/null
 wait $pid 2> /dev/null
+rm -f "$tmp/hold"
 if [ -e "$tmp/finished" ] && [ -s "$tmp/d/prims-s1/population.genome" ] &&
    $REP OUT="$tmp/d" "$tmp/d/prims-s1/population.genome" > /dev/null 2>&1 &&
    cmp -s "$tmp/d/prims-s1/population.genome" "$tmp/a/prims-s1/population.genome"; then

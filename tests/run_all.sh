@@ -32,6 +32,7 @@ run_part() {
 
 run_part "unit tests (CUnit)" "./$BUILD/run_tests"
 run_part "layers: no include of a higher layer in lib/" bash tests/check_layers.sh
+run_part "a library safe to link: public exports only, a host's ODE unchanged" bash tests/check_link.sh
 run_part "neteval against the independent reference" bash tests/check_neteval.sh
 run_part "apps: argument and input errors" bash tests/check_apps.sh
 run_part "simprobe against iKin v1.0" bash tests/check_simprobe.sh

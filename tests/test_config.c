@@ -137,13 +137,114 @@ static void test_config_errors(void) {
   expect_error("[stage]\nprimitives = reach,grasp,lift\n", ST_ERR_RANGE,
                ":2: key 'stage.primitives': 'reach,grasp,lift' is not a list of primitives "
                "(expected a comma-separated subset of reach,open,grasp,move)");
-  expect_error("[stage]\n\nprimitives = grasp,,move\n", ST_ERR_RANGE, ":3: key 'stage.primitives'");
+  expect_error("[stage]\n\nprimitives = grasp,,move\n", ST_ERR_PARSE,
+               ":3: key 'stage.primitives': 'grasp,,move': item 2 of 3 is empty");
 
   stConfig c;
   char err[512];
   st_config_default(&c);
   CU_ASSERT_EQUAL(st_config_load("/nonexistent/run.cfg", &c, err, sizeof err), ST_ERR_IO);
   ST_ASSERT_CONTAINS(err, "/nonexistent/run.cfg: cannot open: No such file");
+}
+
+/* issue 48: inih drops what follows a section's ']' ("[ga] population = 999999999" ran with
+ * the defaults), and a file of CR-only line endings was one line, every key lost: the first is
+ * refused naming the line, the second read line by line (CR, LF and CRLF alike) */
+static void test_config_strict_syntax(void) {
+  expect_error("[ga] population = 999999999\n", ST_ERR_PARSE,
+               ":1: section [ga]: 'population = 999999999' after its ']' (expected nothing but a "
+               "comment there: a key goes on a line of its own)");
+  expect_error("[run]\nseed = 3\n  [ga]]\n", ST_ERR_PARSE, ":3: section [ga]: ']' after its ']'");
+  char path[256], err[512];
+  stConfig c;
+  static const char *const ok_files[] = {
+      "[ga]   ; a comment\npopulation = 50\n[run] # another\nseed = 9\n",
+      "[ga]\rpopulation = 50\r[run]\rseed = 9\r",         /* CR (old Mac) */
+      "[ga]\r\npopulation = 50\r\n[run]\r\nseed = 9\r\n", /* CRLF */
+      "[ga]\rpopulation = 50\n[run]\r\nseed = 9",           /* mixed, no last newline */
+  };
+  for (size_t i = 0; i < sizeof ok_files / sizeof ok_files[0]; i++) {
+    st_test_write_tmp(path, sizeof path, ".cfg", ok_files[i]);
+    st_config_default(&c);
+    CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_OK);
+    CU_ASSERT(c.ga_population == 50 && c.run_seed == 9);
+  }
+  /* lines counted at every ending */
+  expect_error("[ga]\r\rpopulation = x\r", ST_ERR_PARSE, ":3: key 'ga.population': 'x' is not an integer");
+  expect_error("[ga]\r\n\rpopulation = 999999999\r\n", ST_ERR_RANGE, ":3: key 'ga.population'");
+}
+
+/* issue 48: keys that would act on nothing in the run's solver or condition are refused, naming
+ * the key's line; list items are validated alike in every list key */
+static void test_config_keys_act(void) {
+  /* quickstep's parameters with the direct solver (the default) */
+  expect_error("[dynamics]\niterations = 40\n", ST_ERR_RANGE,
+               ":2: key 'dynamics.iterations': it shapes quickstep's iterations, which "
+               "dynamics.solver = step turns off (expected dynamics.solver = quickstep, or the key "
+               "left out)");
+  expect_error("[dynamics]\nsolver = step\nsor_w = 1.1\n", ST_ERR_RANGE,
+               ":3: key 'dynamics.sor_w': it shapes quickstep's over-relaxation, which "
+               "dynamics.solver = step turns off");
+  {
+    char path[256], err[512];
+    stConfig c;
+    st_config_default(&c);
+    st_test_write_tmp(path, sizeof path, ".cfg", "[dynamics]\nsolver = quickstep\niterations = 40\nsor_w = 1.1\n");
+    CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_OK);
+    CU_ASSERT(c.dynamics_iterations == 40 && c.dynamics_sor_w == 1.1);
+    st_config_default(&c); /* a config built in code: validate */
+    c.dynamics_iterations = 40;
+    CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_ERR_RANGE);
+    ST_ASSERT_CONTAINS(err, "key 'dynamics.iterations': it shapes quickstep's iterations");
+  }
+  /* the self-talk gate in conditions without self talk: CT and NI (Table 2.1) */
+  static const char head[] = "[stage]\nstages = integrated\n[network]\narch = B\n[integrated]\n"
+                             "fitness_even = integrated\n";
+  char text[512];
+  snprintf(text, sizeof text, "%swords_even = caretaker\nwords_odd = none\nselftalk_gate = move\n"
+           "populations = x.genome\n", head);
+  expect_error(text, ST_ERR_RANGE, ":9: key 'integrated.selftalk_gate': it holds self talk's "
+               "words, and integrated.words_even = caretaker, words_odd = none give no self talk "
+               "(expected selftalk in words_even or words_odd, or the key left out)");
+  snprintf(text, sizeof text, "%sselftalk_gate = ahead\nwords_even = none\nwords_odd = none\n"
+           "populations = x.genome\n", head);
+  expect_error(text, ST_ERR_RANGE, ":7: key 'integrated.selftalk_gate': it holds self talk's words, "
+               "and integrated.words_even = none, words_odd = none");
+  {
+    char path[256], err[512];
+    stConfig c;
+    st_config_default(&c);
+    snprintf(text, sizeof text, "%spopulations = x.genome\nwords_even = caretaker\n"
+             "words_odd = selftalk\nselftalk_gate = move\n",
+             "[stage]\nstages = integrated\n[network]\narch = A\n[integrated]\n");
+    st_test_write_tmp(path, sizeof path, ".cfg", text);
+    CU_ASSERT_EQUAL(st_config_load(path, &c, err, sizeof err), ST_OK); /* ST-CT: acts */
+    const char *ct[] = {"integrated.words_odd=caretaker"};
+    CU_ASSERT_EQUAL(st_config_set_all(&c, ct, 1, err, sizeof err), ST_ERR_RANGE);
+    ST_ASSERT_CONTAINS(err, "after the --set options: key 'integrated.selftalk_gate'");
+  }
+  /* empty list items, in every list key alike (some readers skipped them, others refused) */
+  expect_error("[dynamics]\nadaptive_joints = l_elbow,,l_wrist_prosup\n", ST_ERR_PARSE,
+               ":2: key 'dynamics.adaptive_joints': 'l_elbow,,l_wrist_prosup': item 2 of 3 is "
+               "empty (expected comma-separated items, none empty)");
+  expect_error("[dynamics]\nkinematic_joints = torso_pitch,torso_yaw,\n", ST_ERR_PARSE,
+               ":2: key 'dynamics.kinematic_joints': 'torso_pitch,torso_yaw,': item 3 of 3 is empty");
+  expect_error("[robot]\ntouch_links = ,l_index_3,l_middle_3,l_ring_3,l_little_3,l_hand\n", ST_ERR_PARSE,
+               ":2: key 'robot.touch_links': ',l_index_3,l_middle_3,l_ring_3,l_little_3,l_hand': item 1 of 6 is empty");
+  expect_error("[integrated]\npopulations = a.genome, ,b.genome\n", ST_ERR_PARSE,
+               ":2: key 'integrated.populations': 'a.genome, ,b.genome': item 2 of 3 is empty");
+  {
+    char err[512];
+    stConfig c;
+    st_config_default(&c);
+    CU_ASSERT_EQUAL(st_config_set(&c, "robot.tip_frames=a,,b", err, sizeof err), ST_ERR_PARSE);
+    ST_ASSERT_CONTAINS(err, "--set robot.tip_frames=a,,b: key 'robot.tip_frames': 'a,,b': item 2 of 3 is empty");
+    CU_ASSERT_EQUAL(st_config_set(&c, "dynamics.adaptive_joints=", err, sizeof err), ST_OK); /* none */
+    CU_ASSERT_EQUAL(st_config_set(&c, "dynamics.kinematic_joints=torso_pitch, torso_yaw", err, sizeof err), ST_OK);
+    snprintf(c.robot_dof_joints, sizeof c.robot_dof_joints, "a,b,,c");
+    CU_ASSERT_EQUAL(st_config_validate(&c, err, sizeof err), ST_ERR_RANGE);
+    ST_ASSERT_CONTAINS(err, "key 'robot.dof_joints': 'a,b,,c': item 3 of 4 is empty");
+  }
 }
 
 /* issue 17: a NUL byte cuts a line short for inih (the rest would be silently dropped), and a
@@ -640,6 +741,8 @@ void st_suite_config(void) {
   ST_ADD_TEST(test_config_load_ok);
   ST_ADD_TEST(test_config_roundtrip);
   ST_ADD_TEST(test_config_errors);
+  ST_ADD_TEST(test_config_strict_syntax);
+  ST_ADD_TEST(test_config_keys_act);
   ST_ADD_TEST(test_config_hostile_files);
   ST_ADD_TEST(test_config_unwritable_strings);
   ST_ADD_TEST(test_config_set_errors);

@@ -288,7 +288,7 @@ static void test_fitness_csv_successes(void) {
                                                  ST_INT_MAX_TRIALS, &n, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL(n, 8);
   char path[256];
-  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp(path, sizeof path, ".csv", "x,best_t0,generation,best_t1\n1,0,3,2\n"));
+  CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp(path, sizeof path, ".csv", "x,best_t0,generation,best_t1\n1,0,3,1\n"));
   CU_ASSERT_EQUAL_FATAL(st_fitness_csv_successes(path, 3, s, 4, &n, err, sizeof err), ST_OK);
   CU_ASSERT(n == 2 && s[0] == 0 && s[1] == 1);
   CU_ASSERT_EQUAL(st_fitness_csv_successes(path, 4, s, 4, &n, err, sizeof err), ST_ERR_PARSE);
@@ -296,6 +296,30 @@ static void test_fitness_csv_successes(void) {
   CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp(path, sizeof path, ".csv", "generation,best\n0,1\n"));
   CU_ASSERT_EQUAL(st_fitness_csv_successes(path, 0, s, 4, &n, err, sizeof err), ST_ERR_PARSE);
   ST_ASSERT_CONTAINS(err, ":1: no generation and best_t0 columns (expected the fitness.csv of an integrated run)");
+  /* issue 48: strict. A trial's value other than 0 or 1 was read as a success, the first of two
+   * rows of a generation taken; each refused naming FILE:LINE, whichever generation is asked */
+  static const struct {
+    const char *text, *why;
+  } bad[] = {
+      {"generation,best_t0,best_t1\n0,1,0\n1,,1\n", ":3: best_t0 '' (expected 0 or 1: the trial failed or succeeded)"},
+      {"generation,best_t0,best_t1\n0,1,x\n", ":2: best_t1 'x' (expected 0 or 1"},
+      {"generation,best_t0,best_t1\n0,1,2\n", ":2: best_t1 '2' (expected 0 or 1"},
+      {"generation,best_t0,best_t1\n0,1,1\n1,0,0\n1,1,1\n", ":4: generation 1 after 1 (expected one row per generation, in increasing order)"},
+      {"generation,best_t0,best_t1\n1,1,1\n0,0,0\n", ":3: generation 0 after 1"},
+      {"generation,best_t0,best_t1\n0,1,1\n1,0\n", ":3: 2 fields (expected 3, as the header)"},
+      {"generation,best_t0,best_t1\n0,1,1,1\n", ":2: 4 fields (expected 3, as the header)"},
+      {"generation,best_t0,best_t1\n-1,1,1\n", ":2: generation '-1' (expected an integer >= 0 as evolve writes it)"},
+      {"generation,best_t0,best_t1\n0,1,1\n01,1,1\n", ":3: generation '01' (expected an integer >= 0"},
+      {"generation,best_t0,best_t1\n 0,1,1\n", ":2: generation ' 0' (expected an integer >= 0"},
+      {"generation,best_t0,best_t0\n0,1,1\n", ":1: column 'best_t0' twice (expected each column once)"},
+  };
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp(path, sizeof path, ".csv", bad[i].text));
+    err[0] = 0;
+    CU_ASSERT_EQUAL(st_fitness_csv_successes(path, 0, s, 4, &n, err, sizeof err), ST_ERR_PARSE);
+    ST_ASSERT_CONTAINS(err, path);
+    ST_ASSERT_CONTAINS(err, bad[i].why);
+  }
 }
 
 void st_suite_csv(void) {

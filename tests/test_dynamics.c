@@ -834,7 +834,7 @@ static void test_unstable_reported(void) {
 static void test_lcp_schur(void) {
   stRobot *r = robot();
   CU_ASSERT_PTR_NOT_NULL_FATAL(r);
-  CU_ASSERT(st__lcp_interposed());
+  CU_ASSERT_PTR_NULL(st__lcp_unavailable()); /* the static library in a program, ODE 0.16.2 */
   stConfig cfg;
   st_config_default(&cfg);
   char err[512];

@@ -12,6 +12,8 @@
 
 #include "posteval/journal.h"
 #include "selftalk/fitnesscsv.h"
+#include "selftalk/io.h"
+#include "selftalk/model.h"
 #include "selftalk/postcsv.h"
 #include "selftalk/posteval.h"
 #include "selftalk/scripted.h"
@@ -481,14 +483,38 @@ static void test_post_fingerprint(void) {
   stConfig cfg;
   st_config_default(&cfg);
   char err[256] = "";
-  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
+  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, NULL, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
                   0x5a85cdc9a96eb982ull);
   CU_ASSERT_EQUAL_FATAL(st_config_set(&cfg, "integrated.steps=240", err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
+  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, NULL, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
                   0x5a85cdc9a96eb982ull); /* a key set to its default is no change */
   CU_ASSERT_EQUAL_FATAL(st_config_set(&cfg, "integrated.selftalk_gate=ahead", err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
+  CU_ASSERT_EQUAL(st__post_fingerprint(&cfg, NULL, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0),
                   0xb20072b883c5df39ull);
+  /* issue 48: the robot model read from the URDF, not its path: the file changed in place (a
+   * link's mass) is another test; a comment, which the model does not hold, is not */
+  char *urdf = NULL;
+  size_t len = 0;
+  CU_ASSERT_EQUAL_FATAL(st_text_read("data/icub_left_arm.urdf", ST_FILE_MAX, &urdf, &len, err, sizeof err), ST_OK);
+  char path[256];
+  uint64_t f[3];
+  for (int v = 0; v < 3; v++) {
+    char *text = malloc(len + 64);
+    CU_ASSERT_PTR_NOT_NULL_FATAL(text);
+    memcpy(text, urdf, len + 1);
+    char *mass = strstr(text, "<mass value=\"0.91179\"/>");
+    CU_ASSERT_PTR_NOT_NULL_FATAL(mass);
+    if (v == 1) mass[18] = '8'; /* 0.91179 -> 0.91189 */
+    if (v == 2) strcat(text, "<!-- a comment -->\n");
+    CU_ASSERT_PTR_NOT_NULL_FATAL(st_test_write_tmp(path, sizeof path, ".urdf", text));
+    free(text);
+    stModel *m = NULL;
+    CU_ASSERT_EQUAL_FATAL(st_model_load_urdf(path, &m, err, sizeof err), ST_OK);
+    f[v] = st__post_fingerprint(&cfg, m, ST_POST_ROBUSTNESS, ST_POST_OWN_WORDS, "ST-CT", NULL, 0);
+    st_model_destroy(m);
+  }
+  free(urdf);
+  CU_ASSERT(f[0] != 0xb20072b883c5df39ull && f[1] != f[0] && f[2] == f[0]);
 }
 
 /* the journal's reader takes only what a trial can give (lib/posteval/journal.c): each line

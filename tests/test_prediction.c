@@ -186,7 +186,8 @@ static void test_pred_total(void) {
 
 static void test_pred_refusals(void) {
   stPredDef d = st_pred_default_def();
-  double o[3][4] = {{0.1, 0.2, 0.3, 0.4}, {0.1, 0.2, 0.3, 0.4}, {0.1, 0.2, 0.3, 0.4}};
+  double o[4][4] = {{0.1, 0.2, 0.3, 0.4}, {0.1, 0.2, 0.3, 0.4}, {0.1, 0.2, 0.3, 0.4},
+                    {0.1, 0.2, 0.3, 0.4}};
   const int ok[3] = {-1, R, R}, bad_word[3] = {-1, R, 4}, silent[3] = {-1, R, -1};
   stPredScore s;
   char err[256];
@@ -197,6 +198,12 @@ static void test_pred_refusals(void) {
   t.word = bad_word;
   CU_ASSERT_EQUAL(st_pred_trial(&d, &t, &s, err, sizeof err), ST_ERR_ARG);
   ST_ASSERT_CONTAINS(err, "step 2: word 4 (expected -1..3)");
+  const int back[4] = {-1, R, M, G}; /* the caretaker never goes back (issue 48) */
+  t.word = back;
+  t.n = 4;
+  CU_ASSERT_EQUAL(st_pred_trial(&d, &t, &s, err, sizeof err), ST_ERR_ARG);
+  ST_ASSERT_CONTAINS(err, "step 3: word 2 after 3 (expected the caretaker's words in order, never back)");
+  t.n = 3;
   t.word = silent;
   CU_ASSERT_EQUAL(st_pred_trial(&d, &t, &s, err, sizeof err), ST_ERR_ARG);
   ST_ASSERT_CONTAINS(err, "step 2: no word");

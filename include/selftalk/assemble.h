@@ -29,9 +29,9 @@ typedef struct stAssembly {
 /* Assembles the population. Errors name the key, the file (and line) and what was expected:
  * a pattern matching no file, a file that cannot be read, genotypes that are not 612 genes, a
  * file with fewer than `top` genotypes, more genotypes than ga.population. */
-stStatus st_assemble_population(const stConfig *cfg, stAssembly *a, char *err, size_t errsz);
+ST_API stStatus st_assemble_population(const stConfig *cfg, stAssembly *a, char *err, size_t errsz);
 
-void st_assembly_free(stAssembly *a); /* nullable */
+ST_API void st_assembly_free(stAssembly *a); /* nullable */
 
 #ifdef __cplusplus
 }

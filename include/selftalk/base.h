@@ -9,6 +9,15 @@
 extern "C" {
 #endif
 
+/* ST_API marks the public functions (as Box2D's B2_API): the library is compiled with
+ * -fvisibility=hidden, so that its shared objects export these and nothing else (not its
+ * internals, st__*, nor what it takes from ODE: tests/check_link.sh). */
+#if defined(__GNUC__) || defined(__clang__)
+#define ST_API __attribute__((visibility("default")))
+#else
+#define ST_API
+#endif
+
 #define ST_VERSION_MAJOR 0
 #define ST_VERSION_MINOR 1
 #define ST_VERSION_PATCH 0
@@ -29,7 +38,7 @@ typedef enum stStatus {
 } stStatus;
 
 /* Short English name of a status, e.g. "parse error". Never NULL. */
-const char *st_status_str(stStatus status);
+ST_API const char *st_status_str(stStatus status);
 
 /* Error buffers: functions that can fail take (char *err, size_t errsz) and, on failure,
  * write one line without a trailing newline, usually "FILE:LINE: key 'x': problem

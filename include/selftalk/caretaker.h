@@ -22,15 +22,15 @@ typedef struct stCaretaker {
   int switch_step[ST_NPRIM];   /* step a word was first given, -1 if never (jumped) */
 } stCaretaker;
 
-void st_caretaker_init(stCaretaker *c, const stConfig *cfg);
+ST_API void st_caretaker_init(stCaretaker *c, const stConfig *cfg);
 
 /* 1 when the caretaker's condition for leaving `primitive` holds in this state. */
-int st_caretaker_done(const stCaretaker *c, const stFitnessDef *def, int primitive,
+ST_API int st_caretaker_done(const stCaretaker *c, const stFitnessDef *def, int primitive,
                       const stQuantities *q, const stContacts *contacts);
 
 /* The word to give at control step `step` (sensing the state q / contacts before acting):
  * ST_PRIM_* or -1 for none. Call once per step, in order. */
-int st_caretaker_word(stCaretaker *c, const stFitnessDef *def, int step, const stQuantities *q,
+ST_API int st_caretaker_word(stCaretaker *c, const stFitnessDef *def, int step, const stQuantities *q,
                       const stContacts *contacts);
 
 #ifdef __cplusplus

@@ -292,25 +292,25 @@ typedef struct stConfigKey {
 
 /* The tier of key i (0 <= i < st_config_nkeys()): the fence's (ST_CONFIG_TIERS), else
  * ST_TIER_PROTOCOL. */
-stConfigTier st_config_key_tier(int i);
+ST_API stConfigTier st_config_key_tier(int i);
 
 /* "protocol", "run", "extension", "diagnostic", "speed"; "?" for anything else. */
-const char *st_config_tier_name(stConfigTier tier);
+ST_API const char *st_config_tier_name(stConfigTier tier);
 
 /* Number of keys and key i (0 <= i < st_config_nkeys()). */
-int st_config_nkeys(void);
-const stConfigKey *st_config_key(int i);
+ST_API int st_config_nkeys(void);
+ST_API const stConfigKey *st_config_key(int i);
 
 /* Whether key i (0 <= i < st_config_nkeys()) of cfg differs from base's, and its value as
  * config.ini writes it (st_config_write: "%.17g" reals, enum names, true/false). */
-int st_config_key_differs(const stConfig *cfg, const stConfig *base, int i);
-void st_config_format(const stConfig *cfg, int i, char *buf, size_t n);
+ST_API int st_config_key_differs(const stConfig *cfg, const stConfig *base, int i);
+ST_API void st_config_format(const stConfig *cfg, int i, char *buf, size_t n);
 
 /* Index of "section.key" or -1. */
-int st_config_find(const char *section, const char *name);
+ST_API int st_config_find(const char *section, const char *name);
 
 /* Fills every field with its default (the thesis protocol). */
-void st_config_default(stConfig *cfg);
+ST_API void st_config_default(stConfig *cfg);
 
 /* Reads an INI file over cfg (keys the file does not name keep their value: call
  * st_config_default first). Rejects a missing file, one larger than ST_FILE_MAX or holding a
@@ -318,35 +318,35 @@ void st_config_default(stConfig *cfg);
  * values a config file cannot hold as they are (a ';' or '#' at the start or after a space,
  * control characters, white space around them) and inconsistent combinations, naming file and
  * line. */
-stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz);
+ST_API stStatus st_config_load(const char *path, stConfig *cfg, char *err, size_t errsz);
 
 /* The line of config file `path` that sets key i ("name = value" under its section), 0 when
  * none does or the file cannot be read: where a check made after st_config_load (a layer
  * above core: selftalk/trialkind.h) finds the key it blames. */
-int st_config_key_line(const char *path, int i);
+ST_API int st_config_key_line(const char *path, int i);
 
 /* Applies one "section.key=value" override and checks the cross-key rules. */
-stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz);
+ST_API stStatus st_config_set(stConfig *cfg, const char *assignment, char *err, size_t errsz);
 
 /* Applies n overrides in order (the --set options of every app), then checks the cross-key
  * rules once, so that e.g. ga.elites=1 and ga.population=4 are accepted in either order. */
-stStatus st_config_set_all(stConfig *cfg, const char *const *assignments, int n, char *err,
+ST_API stStatus st_config_set_all(stConfig *cfg, const char *const *assignments, int n, char *err,
                            size_t errsz);
 
 /* Checks ranges and cross-key consistency of a config built in code. */
-stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz);
+ST_API stStatus st_config_validate(const stConfig *cfg, char *err, size_t errsz);
 
 /* Writes the config as a loadable INI file, every key with its help as a comment; in each
  * section the keys by tier, each tier's under a comment naming it. */
-int st_config_write(FILE *f, const stConfig *cfg);
+ST_API int st_config_write(FILE *f, const stConfig *cfg);
 
 /* Writes the key reference (section, key, type, default, range, help), tier by tier. */
-void st_config_help(FILE *f);
+ST_API void st_config_help(FILE *f);
 
 /* Primitives named by stage.primitives, as a bit mask: bit p set for primitive p in the order
  * reach, open, grasp, move (ST_PRIM_* of fitness.h). 0 if the list is empty or names anything
  * else (st_config_load and st_config_validate reject such a config). */
-unsigned st_config_primitive_mask(const stConfig *cfg);
+ST_API unsigned st_config_primitive_mask(const stConfig *cfg);
 
 /* Values of stage.stages and of integrated.words_* / fitness_* (the order of their choices). */
 enum { ST_STAGES_SIMPLE = 0, ST_STAGES_MAIN, ST_STAGES_PRIMS, ST_STAGES_INTEGRATED };
@@ -368,13 +368,13 @@ enum { ST_CHAIN_COMPLETE_ALL = 0, ST_CHAIN_COMPLETE_FIXED_CHAINED };
 enum { ST_VARY_REPLACE = 0, ST_VARY_EXTRA };
 
 /* Choice name of an ENUM key's value, e.g. st_config_enum_name("network", "arch", 1) = "A". */
-const char *st_config_enum_name(const char *section, const char *name, int value);
+ST_API const char *st_config_enum_name(const char *section, const char *name, int value);
 
 /* Checks value against the range of the INT or REAL key section.name (the table is the one
  * place ranges live), or a BOOL's 0 and 1, or an ENUM's choice indices: ST_OK, or ST_ERR_RANGE
  * with "section.name: V is out of range (expected ...)". Code that builds its definitions
  * without a stConfig (the GA, the dynamic world) checks the fields that are keys with this. */
-stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
+ST_API stStatus st_config_check_number(const char *section, const char *name, double value, char *err,
                                 size_t errsz);
 
 /* ---- Which stages read which keys ----
@@ -393,19 +393,19 @@ stStatus st_config_check_number(const char *section, const char *name, double va
 #define ST_CONFIG_ALL_STAGES 63u
 
 /* The stages (ST_CONFIG_* bits) that read key i; ST_CONFIG_ALL_STAGES for most keys. */
-unsigned st_config_key_stages(int i);
+ST_API unsigned st_config_key_stages(int i);
 
 /* The stages stage.stages names, as ST_CONFIG_* bits. */
-unsigned st_config_run_stages(const stConfig *cfg);
+ST_API unsigned st_config_run_stages(const stConfig *cfg);
 
 /* Refuses (ST_ERR_ARG, naming the key, its value, the stages that read it and why) a key whose
  * value is not its default when none of `stages` reads it. */
-stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err, size_t errsz);
+ST_API stStatus st_config_check_stages(const stConfig *cfg, unsigned stages, char *err, size_t errsz);
 
 /* The same against another configuration: refuses a key whose value differs from base's when
  * none of `stages` reads it; base_name says what base is in the message ("expected BASE_NAME,
  * VALUE"). A post-evaluation checks its --set options against the config file this way. */
-stStatus st_config_check_changes(const stConfig *cfg, const stConfig *base, const char *base_name,
+ST_API stStatus st_config_check_changes(const stConfig *cfg, const stConfig *base, const char *base_name,
                                  unsigned stages, char *err, size_t errsz);
 
 #ifdef __cplusplus

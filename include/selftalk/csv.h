@@ -77,12 +77,12 @@ typedef struct stCsvSchema {
 
 /* The header line, or a row's line (with its newline), into buf as snprintf does: returns the
  * length of the whole line (>= n when it was cut). */
-int st_csv_header_text(const stCsvSchema *s, char *buf, size_t n);
-int st_csv_row_text(const stCsvSchema *s, const void *row, char *buf, size_t n);
+ST_API int st_csv_header_text(const stCsvSchema *s, char *buf, size_t n);
+ST_API int st_csv_row_text(const stCsvSchema *s, const void *row, char *buf, size_t n);
 
 /* The same onto f; 0, or -1 on a write error. */
-int st_csv_write_header(FILE *f, const stCsvSchema *s);
-int st_csv_write_row(FILE *f, const stCsvSchema *s, const void *row);
+ST_API int st_csv_write_header(FILE *f, const stCsvSchema *s);
+ST_API int st_csv_write_row(FILE *f, const stCsvSchema *s, const void *row);
 
 /* ---- reading ---- */
 
@@ -102,18 +102,18 @@ typedef struct stCsvRows {
 /* Reads and checks a whole file (the bounded reader: at most ST_FILE_MAX bytes, no NUL byte);
  * ctx goes to schema->check. At least one row. ST_ERR_IO (the file), ST_ERR_PARSE (its text,
  * "FILE:LINE: ... (expected ...)"), ST_ERR_NOMEM. On failure rows is empty. */
-stStatus st_csv_read(const char *path, const stCsvSchema *s, const void *ctx, stCsvRows *rows,
+ST_API stStatus st_csv_read(const char *path, const stCsvSchema *s, const void *ctx, stCsvRows *rows,
                      char *err, size_t errsz);
 
-void st_csv_rows_free(stCsvRows *rows);
+ST_API void st_csv_rows_free(stCsvRows *rows);
 
 /* Row i in file order; row k in key order. */
-const void *st_csv_row(const stCsvRows *rows, int i);
-const void *st_csv_sorted(const stCsvRows *rows, int k);
+ST_API const void *st_csv_row(const stCsvRows *rows, int i);
+ST_API const void *st_csv_sorted(const stCsvRows *rows, int k);
 
 /* Two rows of the schema by their first nkey columns (<0, 0, >0): names by strcmp, integers by
  * value. nkey <= s->nkey. */
-int st_csv_compare(const stCsvSchema *s, int nkey, const void *a, const void *b);
+ST_API int st_csv_compare(const stCsvSchema *s, int nkey, const void *a, const void *b);
 
 /* A run of rows with the same first nkey columns: order[start..end), first the smallest row
  * index (the group's first line in the file). */
@@ -123,11 +123,11 @@ typedef struct stCsvGroup {
 
 /* The groups of the rows by their first nkey columns, in key order (O(n)); *groups freed with
  * free(). ST_ERR_NOMEM. */
-stStatus st_csv_groups(const stCsvRows *rows, int nkey, stCsvGroup **groups, int *ngroups,
+ST_API stStatus st_csv_groups(const stCsvRows *rows, int nkey, stCsvGroup **groups, int *ngroups,
                        char *err, size_t errsz);
 
 /* The group whose rows have the first nkey columns of row, by binary search; NULL for none. */
-const stCsvGroup *st_csv_group_find(const stCsvRows *rows, int nkey, const stCsvGroup *groups,
+ST_API const stCsvGroup *st_csv_group_find(const stCsvRows *rows, int nkey, const stCsvGroup *groups,
                                     int ngroups, const void *row);
 
 #ifdef __cplusplus

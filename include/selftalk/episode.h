@@ -48,8 +48,8 @@ typedef struct stProtocol {
 #define ST_REACH_MARGIN 0.02
 
 /* Loads the robot, computes the 16 postures. */
-stStatus st_protocol_create(const stConfig *cfg, stProtocol **protocol, char *err, size_t errsz);
-void st_protocol_destroy(stProtocol *protocol); /* nullable */
+ST_API stStatus st_protocol_create(const stConfig *cfg, stProtocol **protocol, char *err, size_t errsz);
+ST_API void st_protocol_destroy(stProtocol *protocol); /* nullable */
 
 /* Per-thread scratch: the worlds of each mode, created on first use, and the trial table of
  * the last generation evaluated (selftalk/trial.h), built once for all its individuals. */
@@ -59,7 +59,7 @@ typedef struct stWorkspace {
   struct stTrialTable *trials;
 } stWorkspace;
 
-void st_workspace_free(stWorkspace *ws);
+ST_API void st_workspace_free(stWorkspace *ws);
 
 /* ---- the spec ---- */
 
@@ -89,11 +89,11 @@ typedef enum stWordSource {
 } stWordSource;
 
 /* "none", "fixed", "caretaker", "selftalk", "handover". */
-const char *st_word_source_name(stWordSource source);
+ST_API const char *st_word_source_name(stWordSource source);
 
 /* 1 for the sources whose words someone else gives (fixed, caretaker, hand-over), 0 for none
  * and self talk. */
-int st_word_source_given(stWordSource source);
+ST_API int st_word_source_given(stWordSource source);
 
 typedef struct stWords {
   stWordSource source;
@@ -141,7 +141,7 @@ typedef struct stNetController {
 
 /* The controller of a network: ninputs and noutputs of its architecture, talks for type A.
  * Nullable: force (nforce 0). c must outlive the returned controller. */
-stController st_net_controller(stNetController *c, const stNetParams *net, const stForce *force,
+ST_API stController st_net_controller(stNetController *c, const stNetParams *net, const stForce *force,
                                int nforce);
 
 /* Two controllers as one, for main-prim's hand-over trials under stage.handover_rollin = elite
@@ -157,12 +157,12 @@ typedef struct stRollinController {
   int rolling; /* the roll-in acts this step */
 } stRollinController;
 
-stStatus st_rollin_controller(stRollinController *c, const stController *rollin,
+ST_API stStatus st_rollin_controller(stRollinController *c, const stController *rollin,
                               const stController *then, stController *out, char *err,
                               size_t errsz);
 
 /* Checks forced outputs: ST_ERR_RANGE naming an output, value or step out of range. */
-stStatus st_force_check(const stForce *force, int nforce, char *err, size_t errsz);
+ST_API stStatus st_force_check(const stForce *force, int nforce, char *err, size_t errsz);
 
 /* ---- one step, as the scorer and a trace see it ---- */
 
@@ -211,7 +211,7 @@ typedef enum stTrialEnd {
 
 /* "full", "success", "failure", "quiet" (posteval's trials.csv, replay's lines); "?" for
  * anything else. */
-const char *st_trial_end_name(stTrialEnd end);
+ST_API const char *st_trial_end_name(stTrialEnd end);
 
 /* step() fills S, P and success_now of the record and returns the stTrialEnd that ends the
  * episode at this step, or -1 to go on; end() sees the final state. */
@@ -226,12 +226,12 @@ typedef struct stScorer {
  * speaks (on the state before the action; the controller hears it), sense, think, act, score
  * the state the action produced. Nullable: trace. ST_ERR_ARG when self talk is asked of a
  * controller that does not talk, or the controller's outputs do not fit. */
-stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
+ST_API stStatus st_episode_run(const stProtocol *p, stWorkspace *ws, const stEpisodeSpec *e,
                         const stController *ctl, const stWords *words, const stScorer *scorer,
                         stTraceFn trace, void *ctx, char *err, size_t errsz);
 
 /* The label of four linguistic values: their argmax (ties: lowest index). */
-int st_episode_label(const double *ling4);
+ST_API int st_episode_label(const double *ling4);
 
 #ifdef __cplusplus
 }

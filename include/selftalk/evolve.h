@@ -32,22 +32,24 @@ typedef struct stEvolveEvaluator stEvolveEvaluator;
 
 /* The threads to run on, the rule of every threaded runner and app: `requested` when > 0,
  * else run.threads when cfg (nullable: none) sets it > 0, else one per core. */
-int st_thread_count(int requested, const stConfig *cfg);
+ST_API int st_thread_count(int requested, const stConfig *cfg);
 
 typedef struct stEvolveDef {
   const stConfig *cfg;
   const char *out_dir;
   int threads;     /* evaluation threads; 0: run.threads, or one per core */
-  int generations; /* > 0: stop after this many generations in all (else ga.max_generations) */
+  int generations; /* > 0: the run's cap key (ga.max_generations, in the integrated stage
+                      ga.integrated_generations) set to this: config.ini records it */
   int resume;      /* continue from out_dir/checkpoint when there is one */
   FILE *progress;  /* one line per generation; nullable */
   const stEvolveEvaluator *evaluator; /* nullable: evaluate on this process's threads */
 } stEvolveDef;
 
 /* Runs (or resumes) the stages cfg->stage_stages names. Refuses an unwritable directory, a
- * resume with a different configuration, or an unreadable initial population (integrated:
- * population files that cannot be assembled) before any evaluation. */
-stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz);
+ * resume with a different configuration (run.threads and the cap aside: a run continues under
+ * another cap, which its config.ini then records), or an unreadable initial population
+ * (integrated: population files that cannot be assembled) before any evaluation. */
+ST_API stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz);
 
 /* ---- evaluating elsewhere: an individual as a task ----
  * A generation's evaluation is a list of tasks, one per individual, each answered by a
@@ -80,7 +82,7 @@ typedef struct stEvolveResult {
 
 /* Evaluates one task exactly as st_evolve_run's own threads do. p: st_protocol_create of the
  * run's config; idef: st_integrated_def_from_config of it; ws: the calling thread's own. */
-void st_evolve_task_run(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
+ST_API void st_evolve_task_run(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                         const stEvolveTask *task, stEvolveResult *result);
 
 /* Evaluates a generation somewhere else: fills results[i] for tasks[i], i < n (tasks[i] is

@@ -31,35 +31,35 @@ typedef struct stFitnessDef {
   double move_touch, move_lift, move_lift_dist; /* 0.1, 0.1, 0.8 */
 } stFitnessDef;
 
-void st_fitness_def_from_config(const stConfig *cfg, stFitnessDef *def);
+ST_API void st_fitness_def_from_config(const stConfig *cfg, stFitnessDef *def);
 
 /* 1 when the right focus of a primitive is the target (move), 0 for the object. */
-int st_primitive_focus_target(int primitive);
+ST_API int st_primitive_focus_target(int primitive);
 
 /* The primitive-specific part s_p(t) (eq. 2.5-2.8 simple-prim, 2.9-2.12 main-prim). In
  * simple-prim, move uses d_mhat (palm to target: SPEC §7, eq. 2.8's typo). */
-double st_step_s(const stFitnessDef *def, stStage stage, int primitive, const stQuantities *q);
+ST_API double st_step_s(const stFitnessDef *def, stStage stage, int primitive, const stQuantities *q);
 
 /* Step fitness S_p(t) (eq. 2.4) for a focus output y: w f_f + (focus correct ? (1-w) s_p : 0). */
-double st_step_fitness(const stFitnessDef *def, stStage stage, int primitive,
+ST_API double st_step_fitness(const stFitnessDef *def, stStage stage, int primitive,
                        const stQuantities *q, double y_focus, double focus_threshold);
 
 /* The "at any time during the trial" success conditions: simple-prim all four, main-prim
  * reach and open (eq. 2.5-2.10 success lines); main-prim move's "within target_radius" part.
  * Main-prim grasp has no per-step condition (it is judged at the end): returns 0. */
-int st_success_now(const stFitnessDef *def, stStage stage, int primitive, const stQuantities *q);
+ST_API int st_success_now(const stFitnessDef *def, stStage stage, int primitive, const stQuantities *q);
 
 /* Which penalties apply (thesis 2.7.2, 2.8.1.2): bit 0 table, bit 1 object, bit 2 moving.
  * step is the control step (main-prim grasp's moving penalty stops after table_off_step). */
 enum { ST_PEN_TABLE = 1, ST_PEN_OBJECT = 2, ST_PEN_MOVING = 4 };
-int st_penalty_mask(stStage stage, int primitive, int step, int grasp_table_off_step);
+ST_API int st_penalty_mask(stStage stage, int primitive, int step, int grasp_table_off_step);
 
 /* F_p = bonus + scale / n_steps * sum_sp where sum_sp = sum over the primitive's steps of
  * S - P (eq. 2.3). n_steps 0 gives the bonus alone. */
-double st_primitive_fitness(const stFitnessDef *def, double bonus, double sum_sp, long n_steps);
+ST_API double st_primitive_fitness(const stFitnessDef *def, double bonus, double sum_sp, long n_steps);
 
 /* F = n / sum(1 / max(F_p, fp_min)) over n primitives (eq. 2.2 with SPEC §7's factor). */
-double st_harmonic_fitness(const stFitnessDef *def, const double *fp, int n);
+ST_API double st_harmonic_fitness(const stFitnessDef *def, const double *fp, int n);
 
 #ifdef __cplusplus
 }

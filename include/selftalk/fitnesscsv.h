@@ -57,7 +57,7 @@ typedef struct stFitnessColumn {
 } stFitnessColumn;
 
 /* The table and its length. */
-const stFitnessColumn *st_fitness_columns(int *n);
+ST_API const stFitnessColumn *st_fitness_columns(int *n);
 
 #define ST_FITNESS_CSV_MAX_COLS \
   (16 + ST_INT_MAX_TRIALS + ST_TRIAL_KIND_COUNT * (1 + ST_TRIAL_KIND_MAX))
@@ -72,14 +72,15 @@ typedef struct stFitnessCsv {
 
 /* The columns of a layout: 0 <= trials <= ST_INT_MAX_TRIALS, each kind's 0 <= kind_trials <=
  * its row's max. */
-void st_fitness_csv(const stFitnessLayout *layout, stFitnessCsv *csv);
+ST_API void st_fitness_csv(const stFitnessLayout *layout, stFitnessCsv *csv);
 
 /* The trials the best of generation G solved, from a run's fitness.csv: its header's
- * generation and best_t0, best_t1, ... columns (found by name: at most max of them, in the
- * first 64 columns), the values of G's row (1 for anything but "0"), *n of them. Read
- * through the bounded reader. ST_ERR_PARSE without those columns, with a short row or a bad
- * generation, or without G's row. */
-stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
+ * generation and best_t0, best_t1, ... columns (found by name, each column named once; at most
+ * max <= ST_INT_MAX_TRIALS of them), the values of G's row, *n of them. Read through the
+ * bounded reader, strictly: every row as long as the header, generations increasing (one row
+ * each), every best_tI 0 or 1. ST_ERR_PARSE naming FILE:LINE otherwise, or without those
+ * columns or G's row. */
+ST_API stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
                                   int *n, char *err, size_t errsz);
 
 #ifdef __cplusplus

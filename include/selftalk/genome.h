@@ -39,11 +39,11 @@ extern "C" {
 typedef enum stNetArch { ST_ARCH_BASE = 0, ST_ARCH_A, ST_ARCH_B, ST_ARCH_COUNT } stNetArch;
 
 /* "base", "A" or "B". */
-const char *st_arch_name(stNetArch arch);
+ST_API const char *st_arch_name(stNetArch arch);
 /* Parses "base", "A" or "B" (case-insensitive); returns -1 for anything else. */
-int st_arch_parse(const char *name);
+ST_API int st_arch_parse(const char *name);
 /* Genes of an architecture: 612, 696 or 756. */
-int st_arch_ngenes(stNetArch arch);
+ST_API int st_arch_ngenes(stNetArch arch);
 
 /* Gene layout (SPEC §4 table): first index of each block and the index of one gene.
  * Within a block the index runs target-major. */
@@ -79,25 +79,25 @@ typedef struct stGenome {
 } stGenome;
 
 /* Decoded value of a gene: v = -1 + 2u/65535, so 0 -> -1 and 65535 -> +1. */
-double st_gene_value(uint16_t u);
+ST_API double st_gene_value(uint16_t u);
 
 /* Bit b of a genotype, counting from the most significant bit of gene 0 (SPEC §4). */
-int st_genome_bit(const stGenome *g, int b);
-void st_genome_flip_bit(stGenome *g, int b);
+ST_API int st_genome_bit(const stGenome *g, int b);
+ST_API void st_genome_flip_bit(stGenome *g, int b);
 
 /* Fills ngenes genes with fair coin flips drawn from rng. */
-void st_genome_random(stGenome *g, int ngenes, stRng *rng);
+ST_API void st_genome_random(stGenome *g, int ngenes, stRng *rng);
 
 /* Grows a 612-gene genotype to the integrated architecture (SPEC §4, thesis §2.9.2): the
  * blocks 612..695 get random genes from rng (fair coin flips); for type B the block 696..755
  * is set to typeb_init (32768 in the thesis protocol: v = 1/65535, near zero). Genes already
  * present are copied unchanged. Returns ST_ERR_ARG if `in` has not 612 genes or arch is base. */
-stStatus st_genome_grow(const stGenome *in, stNetArch arch, uint16_t typeb_init, stRng *rng,
+ST_API stStatus st_genome_grow(const stGenome *in, stNetArch arch, uint16_t typeb_init, stRng *rng,
                         stGenome *out, char *err, size_t errsz);
 
 /* Mutable-gene mask for the integrated stage: 0 for the frozen primitive genes (< 612),
  * 1 for the new ones, up to ngenes. mask must hold ST_GENOME_MAX_GENES bytes. */
-void st_genome_mask_new_genes(uint8_t *mask, int ngenes);
+ST_API void st_genome_mask_new_genes(uint8_t *mask, int ngenes);
 
 /* ---- genome text format (SPEC §4) ----
  * Lines starting with '#' are comments or metadata ("# genes 612", "# fitness 123.4",
@@ -116,20 +116,20 @@ typedef struct stGenomeSet {
  * agreeing with any "# genes" line; "# fitness" and "# generation" values must parse. Errors
  * name the file and line: "FILE:LINE: genotype: non-hex character 'x' at column 17 (expected 4
  * lower-case hex digits per gene)". On success the caller frees set with st_genome_set_free. */
-stStatus st_genome_set_read(const char *path, int expect_genes, stGenomeSet *set, char *err,
+ST_API stStatus st_genome_set_read(const char *path, int expect_genes, stGenomeSet *set, char *err,
                             size_t errsz);
-void st_genome_set_free(stGenomeSet *set);
+ST_API void st_genome_set_free(stGenomeSet *set);
 
 /* Writes one genotype line (no metadata) to f. */
-int st_genome_write_line(FILE *f, const stGenome *g);
+ST_API int st_genome_write_line(FILE *f, const stGenome *g);
 
 /* Writes "# genes N", optional "# generation G" (g >= 0) and "# fitness F" (finite) lines,
  * then the genotype line. Returns 0 on success, -1 on a write error. */
-int st_genome_write(FILE *f, const stGenome *g, int generation, double fitness);
+ST_API int st_genome_write(FILE *f, const stGenome *g, int generation, double fitness);
 
 /* Writes a whole set to path atomically (temporary file, then rename): the file is either
  * the old one or the complete new one, never a torn write. Nullable: fitness, generation. */
-stStatus st_genome_set_save(const char *path, const stGenome *g, int count, const double *fitness,
+ST_API stStatus st_genome_set_save(const char *path, const stGenome *g, int count, const double *fitness,
                             const int *generation, char *err, size_t errsz);
 
 #ifdef __cplusplus

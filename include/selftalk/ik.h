@@ -68,25 +68,25 @@ typedef struct stIkResult {
   int converged;                   /* 1 when within tol_pos and tol_dir */
 } stIkResult;
 
-stIkDef st_ik_default_def(void);
+ST_API stIkDef st_ik_default_def(void);
 
 /* A target for a body's origin at pos, weight 1, no axis alignment. */
-stIkTarget st_ik_target(int body, const double pos[3]);
+ST_API stIkTarget st_ik_target(int body, const double pos[3]);
 
 /* Adds (or replaces) axis alignment k: body-frame axis -> world direction dir, weighted.
  * Both vectors are normalised here. */
-void st_ik_target_align(stIkTarget *t, int k, const double axis[3], const double dir[3],
+ST_API void st_ik_target_align(stIkTarget *t, int k, const double axis[3], const double dir[3],
                         double weight);
 
 /* Solves from qhat[12] (in: start; out: the best posture found, clamped to [0, 1]; DOF of zero
  * mobility untouched). Nullable: result. Returns ST_OK when converged, ST_ERR_RANGE when the
  * target was not reached within tolerances (qhat then holds the lowest-cost posture visited,
  * result says how far it is), ST_ERR_ARG on a bad body, weights or settings, ST_ERR_NOMEM. */
-stStatus st_ik_solve(const stRobot *r, const stIkDef *def, const stIkTarget *target,
+ST_API stStatus st_ik_solve(const stRobot *r, const stIkDef *def, const stIkTarget *target,
                      double qhat[ST_NDOF], stIkResult *result);
 
 /* Errors and cost of a posture for a target, without solving (allocates like st_ik_solve). */
-stStatus st_ik_evaluate(const stRobot *r, const stIkTarget *target, const double qhat[ST_NDOF],
+ST_API stStatus st_ik_evaluate(const stRobot *r, const stIkTarget *target, const double qhat[ST_NDOF],
                         stIkResult *result);
 
 #ifdef __cplusplus

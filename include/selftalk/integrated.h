@@ -27,7 +27,7 @@ extern "C" {
 typedef enum stIntFitness { ST_FIT_INTEGRATED = 0, ST_FIT_PREDICTION, ST_FIT_COUNT } stIntFitness;
 
 /* "integrated", "prediction". */
-const char *st_int_fitness_name(stIntFitness f);
+ST_API const char *st_int_fitness_name(stIntFitness f);
 
 /* The stage's definition (keys integrated.*, prediction.*, network.arch). */
 typedef struct stIntegratedDef {
@@ -44,12 +44,12 @@ typedef struct stIntegratedDef {
   stPredDef pred;
 } stIntegratedDef;
 
-void st_integrated_def_from_config(const stConfig *cfg, stIntegratedDef *def);
+ST_API void st_integrated_def_from_config(const stConfig *cfg, stIntegratedDef *def);
 
 /* Main-prim's chained trials (stage.chain_trials, SPEC 12): the integrated stage's trials
  * (integrated.steps, hold_steps, focus_bonus_steps) for the base network, every trial hearing
  * the caretaker and scored by eq. 2.14, no first-generation variant. */
-void st_chain_def_from_config(const stConfig *cfg, stIntegratedDef *def);
+ST_API void st_chain_def_from_config(const stConfig *cfg, stIntegratedDef *def);
 
 /* What trial i of a generation is: the words it hears, the fitness it gets, its bonus factor.
  * autonomous: it hears no caretaker (self talk or nothing). */
@@ -60,21 +60,21 @@ typedef struct stIntPlan {
   int autonomous;
 } stIntPlan;
 
-stIntPlan st_integrated_plan(const stIntegratedDef *def, int generation, int trial);
+ST_API stIntPlan st_integrated_plan(const stIntegratedDef *def, int generation, int trial);
 
 /* ---- the integrated behaviour fitness (eq. 2.14 and §2.9.4.1), pure ---- */
 
 /* s_i(t) = s_m / 2 + (not opened and not lifted: s_o; opened and not lifted: 1 + s_g;
  * lifted: 2) / 4 with s_o, s_g, s_m of eq. 2.10-2.12. */
-double st_int_s(const stFitnessDef *def, const stQuantities *q, int opened);
+ST_API double st_int_s(const stFitnessDef *def, const stQuantities *q, int opened);
 
 /* S(t) = w f_f + (focus correct ? (1 - w) s_i : 0) (eq. 2.4): the right focus is the target
  * while the object is lifted, the object otherwise. */
-double st_int_step_fitness(const stFitnessDef *def, const stQuantities *q, int opened,
+ST_API double st_int_step_fitness(const stFitnessDef *def, const stQuantities *q, int opened,
                            double y_focus, double focus_threshold);
 
 /* P(t): table touching throughout, object moving while the object is not lifted. */
-double st_int_penalty(const stQuantities *q, double pen_table, double pen_moving);
+ST_API double st_int_penalty(const stQuantities *q, double pen_table, double pen_moving);
 
 /* One trial's outcome. */
 typedef struct stIntTrialResult {
@@ -116,14 +116,14 @@ typedef struct stIntScore {
   stIntTrialResult r;
 } stIntScore;
 
-void st_int_score_begin(stIntScore *sc, const stFitnessDef *fd, double focus_threshold,
+ST_API void st_int_score_begin(stIntScore *sc, const stFitnessDef *fd, double focus_threshold,
                         const stIntegratedDef *def);
 
 /* Scores the state after step `step`: writes S, P (nullable) and returns the stTrialEnd that
  * ends the trial here (success: within the target radius while lifted more than hold_steps
  * steps ago and still lifted; failure: the world diverged, or the object fell with
  * integrated.fail_end = penalty), or -1. */
-int st_int_score_step(stIntScore *sc, int step, const stQuantities *q, double y_focus,
+ST_API int st_int_score_step(stIntScore *sc, int step, const stQuantities *q, double y_focus,
                       double pen_table, double pen_moving, int fell, int unstable, double *S,
                       double *P);
 
@@ -134,18 +134,18 @@ int st_int_score_step(stIntScore *sc, int step, const stQuantities *q, double y_
  * sc->keep asks, points certain to be clamped to 0 (each remaining step adds S <= w + (1 - w) / 2
  * - pen_moving_floor, or -fitness.fail_penalty should the world diverge), a prediction record
  * that does not count (no reach yet), words that cannot change (words_fixed: not self talk). */
-int st_int_score_settle(stIntScore *sc, int out_of_reach, double pen_moving_floor,
+ST_API int st_int_score_settle(stIntScore *sc, int out_of_reach, double pen_moving_floor,
                         int words_fixed);
 
 /* Fills the remainder (success: S = 1; failure: P = fitness.fail_penalty per step, or, ended by
  * st_int_score_settle, the object-moving penalty every remaining step is certain to pay). */
-void st_int_score_end(stIntScore *sc, stIntTrialResult *r);
+ST_API void st_int_score_end(stIntScore *sc, stIntTrialResult *r);
 
 /* A trial's bonus: (focus bonus + move bonus) x bonus x factor. */
-double st_int_trial_bonus(const stIntTrialResult *r, double bonus, double factor);
+ST_API double st_int_trial_bonus(const stIntTrialResult *r, double bonus, double factor);
 
 /* A trial's share before normalisation: max(0, sum S - sum P) (the penalty cap). */
-double st_int_trial_points(const stIntTrialResult *r);
+ST_API double st_int_trial_points(const stIntTrialResult *r);
 
 /* ---- an individual's fitness over its trials ---- */
 
@@ -165,7 +165,7 @@ typedef struct stIntEvaluation {
 /* Combines n trials (bonus: fitness.bonus, scale: fitness.scale): plan[i], result[i] and, for
  * prediction trials, pred[i] (only read where plan[i].fitness is prediction; nullable when
  * none is). */
-void st_int_combine(double bonus, double scale, const stIntPlan *plan,
+ST_API void st_int_combine(double bonus, double scale, const stIntPlan *plan,
                     const stIntTrialResult *result, const stPredScore *pred, int n,
                     stIntEvaluation *e);
 
@@ -174,21 +174,21 @@ void st_int_combine(double bonus, double scale, const stIntPlan *plan,
 /* The episode of an integrated trial: reach posture k, object position k, target t (0, 1, or
  * ST_TARGET_GENERAL), offsets drawn from rng (nullable: none; object x/y, then target x/y/z),
  * def->steps long, dynamic, the object-table collision on throughout. */
-void st_int_episode(const stProtocol *p, const stIntegratedDef *def, int k, int t, stRng *rng,
+ST_API void st_int_episode(const stProtocol *p, const stIntegratedDef *def, int k, int t, stRng *rng,
                     uint64_t seed_key, stEpisodeSpec *e);
 
 /* Integrated trial i's type k (reach posture and object position k, target k mod 2):
  * i mod 4, or with integrated.trial_order = pairs (i div 2) mod 4 (SPEC 13). */
-int st_int_trial_type(const stProtocol *p, int i);
+ST_API int st_int_trial_type(const stProtocol *p, int i);
 
 /* Trial i of a generation for an individual: type k = st_int_trial_type(p, i), target k mod 2,
  * offsets keyed by (seed, generation, trial) - common to every individual - and the solver's
  * generator by (seed, generation, individual, trial). */
-void st_int_trial(const stProtocol *p, const stIntegratedDef *def, int generation, int individual,
+ST_API void st_int_trial(const stProtocol *p, const stIntegratedDef *def, int generation, int individual,
                   int i, stEpisodeSpec *e);
 
 /* The words of a source: scale network.linguistic_input, the secondary input throughout. */
-stWords st_int_words(const stProtocol *p, stWordSource source);
+ST_API stWords st_int_words(const stProtocol *p, stWordSource source);
 
 /* Where the integrated scorer keeps the record the prediction fitness needs (nullable
  * buffers: no record): the word heard and the four linguistic outputs of each step. */
@@ -210,11 +210,11 @@ typedef struct stIntScorer {
   stIntRecord *rec;
 } stIntScorer;
 
-stScorer st_int_scorer(stIntScorer *s, const stProtocol *p, const stIntegratedDef *def,
+ST_API stScorer st_int_scorer(stIntScorer *s, const stProtocol *p, const stIntegratedDef *def,
                        stIntTrialResult *r, stIntRecord *rec);
 
 /* Evaluates a network (type def->arch) on the trials of a generation. */
-stStatus st_int_evaluate(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
+ST_API stStatus st_int_evaluate(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
                          int generation, int individual, const stNetParams *net,
                          stIntEvaluation *e, char *err, size_t errsz);
 
@@ -222,7 +222,7 @@ stStatus st_int_evaluate(const stProtocol *p, const stIntegratedDef *def, stWork
  * prediction score of the trial's words and outputs, whether or not its object reached the
  * target (st_int_combine decides whether it counts); zero for other trials. Nullable: trace,
  * pred. */
-stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
+ST_API stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
                           int generation, int individual, int i, const stNetParams *net,
                           stIntPlan *plan, stIntTrialResult *r, stPredScore *pred,
                           stTraceFn trace, void *ctx, char *err, size_t errsz);
@@ -231,7 +231,7 @@ stStatus st_int_trial_run(const stProtocol *p, const stIntegratedDef *def, stWor
  * network's): the words of plan->words, the integrated scorer, and, when plan->fitness is
  * ST_FIT_PREDICTION and pred is given, the prediction score of the words and the controller's
  * linguistic outputs (zero otherwise). Nullable: trace, pred. */
-stStatus st_int_run_with(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
+ST_API stStatus st_int_run_with(const stProtocol *p, const stIntegratedDef *def, stWorkspace *ws,
                          const stEpisodeSpec *e, const stController *ctl, const stIntPlan *plan,
                          stIntTrialResult *r, stPredScore *pred, stTraceFn trace, void *ctx,
                          char *err, size_t errsz);

@@ -25,17 +25,17 @@ extern "C" {
  * free()) with a terminating NUL after its *len bytes. Errors: "PATH: cannot open: REASON",
  * "PATH: cannot read: REASON" (a directory, an I/O error), "PATH: larger than 64 MiB (expected
  * an input file of at most 67108864 bytes)". On failure *data is NULL and *len 0. */
-stStatus st_file_read(const char *path, size_t max, char **data, size_t *len, char *err,
+ST_API stStatus st_file_read(const char *path, size_t max, char **data, size_t *len, char *err,
                       size_t errsz);
 
 /* Refuses a NUL byte in text that should be text (a genome line followed by NUL and junk
  * would otherwise read as the line alone): "NAME:LINE: NUL byte at column C (expected a text
  * file)". */
-stStatus st_text_check(const char *name, const char *text, size_t len, char *err, size_t errsz);
+ST_API stStatus st_text_check(const char *name, const char *text, size_t len, char *err, size_t errsz);
 
 /* A whole text file: st_file_read, then st_text_check on what it read, with their errors. On
  * failure *text is NULL and *len 0. */
-stStatus st_text_read(const char *path, size_t max, char **text, size_t *len, char *err,
+ST_API stStatus st_text_read(const char *path, size_t max, char **text, size_t *len, char *err,
                       size_t errsz);
 
 /* A file being written atomically; a plain value owned by the caller. */
@@ -46,20 +46,20 @@ typedef struct stAtomicFile {
 } stAtomicFile;
 
 /* Opens "<path>.tmp.<pid>" for writing. */
-stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t errsz);
+ST_API stStatus st_atomic_open(stAtomicFile *af, const char *path, char *err, size_t errsz);
 
 /* Flushes, syncs, closes and renames the temporary file over path. On failure the temporary
  * file is removed and path is untouched. */
-stStatus st_atomic_commit(stAtomicFile *af, char *err, size_t errsz);
+ST_API stStatus st_atomic_commit(stAtomicFile *af, char *err, size_t errsz);
 
 /* Closes and removes the temporary file; path is untouched. */
-void st_atomic_abort(stAtomicFile *af);
+ST_API void st_atomic_abort(stAtomicFile *af);
 
 /* Removes "<path>.tmp.<digits>" files that a writer killed between open and commit left
  * beside path (a kill -9 cannot be cleaned up after), except this process's own. For a run
  * starting or resuming in its directory: one writer per directory. Returns how many were
  * removed, or -1 (errno set) when the directory cannot be read. */
-int st_atomic_clean(const char *path);
+ST_API int st_atomic_clean(const char *path);
 
 #ifdef __cplusplus
 }

@@ -82,19 +82,19 @@ typedef struct stModel {
  * reach beyond 100 m. Errors name the file and the element: "FILE: link 'l_hand': collision
  * mesh 'x.stl': cannot read (...)". On success *model is owned by the caller
  * (st_model_destroy). */
-stStatus st_model_load_urdf(const char *path, stModel **model, char *err, size_t errsz);
+ST_API stStatus st_model_load_urdf(const char *path, stModel **model, char *err, size_t errsz);
 
 /* Nullable: model. */
-void st_model_destroy(stModel *model);
+ST_API void st_model_destroy(stModel *model);
 
 /* Body index of a link name, or -1. */
-int st_model_body(const stModel *model, const char *link_name);
+ST_API int st_model_body(const stModel *model, const char *link_name);
 
 /* Body index whose parent joint has this name, or -1. */
-int st_model_joint(const stModel *model, const char *joint_name);
+ST_API int st_model_joint(const stModel *model, const char *joint_name);
 
 /* "sphere", "box", "cylinder", "mesh" (stGeomType); "?" for another value. */
-const char *st_geom_type_name(int type);
+ST_API const char *st_geom_type_name(int type);
 
 #ifdef __cplusplus
 }

@@ -30,9 +30,9 @@ typedef struct stNetDef {
 } stNetDef;
 
 /* The network keys of cfg. */
-stNetDef st_net_def_from_config(const stConfig *cfg);
+ST_API stNetDef st_net_def_from_config(const stConfig *cfg);
 /* The keys' defaults (the thesis's values, from the key table). */
-stNetDef st_net_default_def(void);
+ST_API stNetDef st_net_default_def(void);
 
 /* Parameters decoded from a genotype (weights in [-1, 1], decays in [0, 1]). */
 typedef struct stNetParams {
@@ -61,30 +61,30 @@ typedef struct stNetState {
 
 /* Inputs and outputs of an architecture: 25/13 (base), 26/17 (A, B; outputs include the 4
  * linguistic values). */
-int st_net_ninputs(stNetArch arch);
-int st_net_noutputs(stNetArch arch);
+ST_API int st_net_ninputs(stNetArch arch);
+ST_API int st_net_noutputs(stNetArch arch);
 
 /* Decodes a genotype. Fails with ST_ERR_ARG (message in err) when the genotype's gene count
  * is not the architecture's. Nullable: def (thesis defaults). */
-stStatus st_net_decode(const stNetDef *def, stNetArch arch, const stGenome *g, stNetParams *p,
+ST_API stStatus st_net_decode(const stNetDef *def, stNetArch arch, const stGenome *g, stNetParams *p,
                        char *err, size_t errsz);
 
 /* Starts a trial: leaky units at u(-1) = 0, nothing emitted. */
-void st_net_reset(const stNetParams *p, stNetState *s);
+ST_API void st_net_reset(const stNetParams *p, stNetState *s);
 
 /* One control step. in holds st_net_ninputs(arch) values; out receives
  * st_net_noutputs(arch) values (nullable: read s->out / s->ling_emit instead). */
-void st_net_step(const stNetParams *p, stNetState *s, const double *in, double *out);
+ST_API void st_net_step(const stNetParams *p, stNetState *s, const double *in, double *out);
 
 /* The logistic function with slope lambda. */
-double st_net_sigmoid(double lambda, double x);
+ST_API double st_net_sigmoid(double lambda, double x);
 
 /* Self talk (type A): the label produced this step, the argmax of the linguistic values
  * (ties: lowest index), 0 reach, 1 open, 2 grasp, 3 move. */
-int st_net_selftalk_label(const stNetState *s);
+ST_API int st_net_selftalk_label(const stNetState *s);
 
 /* Linguistic inputs for a heard label: one-hot times scale, or all zero when label < 0. */
-void st_net_label_input(int label, double scale, double in4[ST_NET_NLING]);
+ST_API void st_net_label_input(int label, double scale, double in4[ST_NET_NLING]);
 
 #ifdef __cplusplus
 }

@@ -60,26 +60,26 @@ typedef struct stPostSummaryRow {
 } stPostSummaryRow;
 
 /* The files' column tables. */
-const stCsvSchema *st_post_trials_schema(void);
-const stCsvSchema *st_post_summary_schema(void);
+ST_API const stCsvSchema *st_post_trials_schema(void);
+ST_API const stCsvSchema *st_post_summary_schema(void);
 
 /* trials.csv: a header, then one row per trial run, individual by individual in order, trial
  * by trial; r[i * ntrials + t] is individual i's trial t; excluded individuals have no rows.
  * labels->condition has fewer than ST_POST_LABEL_MAX characters. Returns 0, or -1 on a write
  * error. */
-int st_post_write_trials(FILE *f, const stPostLabels *labels, const stPostIndividual *ind,
+ST_API int st_post_write_trials(FILE *f, const stPostLabels *labels, const stPostIndividual *ind,
                          int nind, const stPostTrial *trials, int ntrials, const stPostResult *r);
 
 /* summary.csv: a header, then one row per individual (st_post_summarise of its results). */
-int st_post_write_summary(FILE *f, const stPostLabels *labels, const stPostIndividual *ind,
+ST_API int st_post_write_summary(FILE *f, const stPostLabels *labels, const stPostIndividual *ind,
                           int nind, int ntrials, const stPostResult *r);
 
 /* The rows (stPostSummaryRow) of a summary file, checked (st_csv_read's errors). */
-stStatus st_post_read_summary(const char *path, stCsvRows *rows, char *err, size_t errsz);
+ST_API stStatus st_post_read_summary(const char *path, stCsvRows *rows, char *err, size_t errsz);
 
 /* The rows (stPostTrialRow) of a trials file, each checked against its test's trial table in
  * defs (st_post_def_from_config of each test: the posteval.* keys the file was made with). */
-stStatus st_post_read_trials(const char *path, const stPostDef defs[ST_POST_NTESTS],
+ST_API stStatus st_post_read_trials(const char *path, const stPostDef defs[ST_POST_NTESTS],
                              stCsvRows *rows, char *err, size_t errsz);
 
 #ifdef __cplusplus

@@ -37,7 +37,7 @@ extern "C" {
 
 /* stPostTest, its names: selftalk/study.h */
 /* The test's reader bit of the key table (ST_CONFIG_INTEGRATION_TEST, ...). */
-unsigned st_post_test_reader(stPostTest test);
+ST_API unsigned st_post_test_reader(stPostTest test);
 
 /* A test's variant: its own words, or other words in the same trials. */
 typedef enum stPostVariant {
@@ -69,7 +69,7 @@ typedef struct stPostTestInfo {
 } stPostTestInfo;
 
 /* The row of a test; NULL for no test. */
-const stPostTestInfo *st_post_test_info(stPostTest test);
+ST_API const stPostTestInfo *st_post_test_info(stPostTest test);
 
 /* A test's trial table (keys posteval.*, integrated.steps, run.seed). */
 typedef struct stPostDef {
@@ -84,7 +84,7 @@ typedef struct stPostDef {
   uint64_t seed;     /* run.seed */
 } stPostDef;
 
-void st_post_def_from_config(const stConfig *cfg, stPostTest test, stPostDef *def);
+ST_API void st_post_def_from_config(const stConfig *cfg, stPostTest test, stPostDef *def);
 
 /* One row of a trial table. */
 typedef struct stPostTrial {
@@ -106,28 +106,28 @@ typedef struct stPostTrial {
  * i = (cell x postures + posture) x repetitions + repetition; the object at the cell centre +
  * uniform x/y offset (posteval.generalisation_offset), the generalisation target without
  * offset. */
-void st_post_trial(const stPostDef *def, const stScene *scene, int i, stPostTrial *trial);
+ST_API void st_post_trial(const stPostDef *def, const stScene *scene, int i, stPostTrial *trial);
 
 /* What st_post_trial fills without the scene: index, type, cell, posture, repetition, target,
  * steps (the positions 0). The one layout of the trial tables: ./apps/stats checks the rows of
  * a trials.csv against it. */
-void st_post_trial_layout(const stPostDef *def, int i, stPostTrial *trial);
+ST_API void st_post_trial_layout(const stPostDef *def, int i, stPostTrial *trial);
 
 /* Centre (x, y) of cell c = row * cells + column, the row along x (0 nearest the robot), the
  * column along y (0 the most negative y, the robot's right): centre + ((row, column) -
  * (cells - 1) / 2) cell_size. */
-void st_post_cell_center(const stPostDef *def, int cell, double xy[2]);
+ST_API void st_post_cell_center(const stPostDef *def, int cell, double xy[2]);
 
 /* The episode of a trial: dynamic, from reach posture trial->posture, the object-table
  * collision on throughout. */
-void st_post_episode(const stProtocol *p, const stPostTrial *trial, stEpisodeSpec *e);
+ST_API void st_post_episode(const stProtocol *p, const stPostTrial *trial, stEpisodeSpec *e);
 
 /* What the trials of a test hear: integration, and the generalisation test's caretaker variant,
  * the caretaker; robustness and generalisation the condition's autonomous words
  * (integrated.words_odd, else words_even, whichever is not the caretaker: self talk for ST-CT
  * and ST, none for CT and NI); the integration test's no-words variant, none. ST_ERR_ARG when
  * the condition has no autonomous trials or a variant is asked of another test. */
-stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, stPostVariant variant,
+ST_API stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, stPostVariant variant,
                        stWordSource *words, char *err, size_t errsz);
 
 /* The condition's label: robustness and generalisation, the row of Table 2.1 the config's
@@ -136,13 +136,13 @@ stStatus st_post_words(const stIntegratedDef *idef, stPostTest test, stPostVaria
  * integration, the primitive runs' kind (thesis 3.1): "incremental" (stage.stages prims, or
  * main_prim from stage.init_population) or "nonincremental" (main_prim from random genotypes),
  * with "-nowords" appended for the no-words variant. */
-void st_post_condition(const stConfig *cfg, stPostTest test, stPostVariant variant, char *buf,
+ST_API void st_post_condition(const stConfig *cfg, stPostTest test, stPostVariant variant, char *buf,
                        size_t n);
 
 /* The exclusion rule of the generalisation test (thesis 2.10.3, SPEC §11): 1 when none of the
  * trials that were autonomous (st_integrated_plan: no caretaker) in the training generation
  * `generation` succeeded; success[i] is trial i's (fitness.csv best_t<i>), n trials. */
-int st_post_excluded(const stIntegratedDef *idef, int generation, const uint8_t *success, int n);
+ST_API int st_post_excluded(const stIntegratedDef *idef, int generation, const uint8_t *success, int n);
 
 /* ---- one trial ---- */
 
@@ -162,7 +162,7 @@ typedef struct stPostResult {
 /* Runs one trial of a controller (an evolved network: st_net_controller; the scripted one)
  * hearing `words`, with the secondary input network.secondary_input when it has 26 inputs.
  * Nullable: trace (called after every step, as st_episode_run's; replay --posteval). */
-stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
+ST_API stStatus st_post_run_trial(const stProtocol *p, const stIntegratedDef *idef, stWorkspace *ws,
                            const stPostTrial *trial, const stController *ctl, stWordSource words,
                            stPostResult *r, stTraceFn trace, void *ctx, char *err, size_t errsz);
 
@@ -180,12 +180,12 @@ typedef struct stPostIndividual {
 
 /* The run label of a path: a directory's own name; a file's directory's name, or the file's
  * name without its extension when the directory is ".". */
-void st_post_run_label(const char *path, char *buf, size_t n);
+ST_API void st_post_run_label(const char *path, char *buf, size_t n);
 
 /* Integration: the first `top` genotypes (ngenes genes) of a population file, or of a
  * primitive run directory's population.genome (finished run), else its checkpoint (a run
  * still going: its first genotypes are the elites, best first). out holds top entries. */
-stStatus st_post_load_population(const char *path, int top, int ngenes, stPostIndividual *out,
+ST_API stStatus st_post_load_population(const char *path, int top, int ngenes, stPostIndividual *out,
                                  char *err, size_t errsz);
 
 /* Robustness, generalisation: the best of the last generation of an integrated run directory
@@ -193,7 +193,7 @@ stStatus st_post_load_population(const char *path, int top, int ngenes, stPostIn
  * config.ini (the same network.arch and integrated.words_* / fitness_* / first_generation as
  * cfg) and fitness.csv (a row for G). excluded is set by the exclusion rule when `exclusion`
  * is 1, from that row's best_t<i> columns. */
-stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
+ST_API stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
                           stPostIndividual *out, char *err, size_t errsz);
 
 /* ---- results ---- */
@@ -207,7 +207,7 @@ typedef struct stPostSummary {
 } stPostSummary;
 
 /* Summary of one individual's n results (excluded: none run, n = the test's trials). */
-void st_post_summarise(const stPostResult *r, int n, int excluded, stPostSummary *s);
+ST_API void st_post_summarise(const stPostResult *r, int n, int excluded, stPostSummary *s);
 
 /* What every row of a run's files says besides the individual and the trial. */
 typedef struct stPostLabels {
@@ -248,7 +248,7 @@ typedef struct stPostRunDef {
  * with a journal is refused. Refuses keys the
  * test does not read (in the config file: unless the run's stages read them), inputs that
  * cannot be read, and an unwritable directory before any trial. */
-stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz);
+ST_API stStatus st_post_run(const stPostRunDef *def, char *err, size_t errsz);
 
 #ifdef __cplusplus
 }

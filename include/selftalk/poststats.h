@@ -26,18 +26,18 @@ typedef struct stPostNames {
 } stPostNames;
 
 /* The index of name, or -1. */
-int st_post_names_index(const stPostNames *names, const char *name);
+ST_API int st_post_names_index(const stPostNames *names, const char *name);
 
 /* The tests of a file's rows (summary or trials: their test column), in file order. ST_ERR_RANGE
  * beyond ST_POST_MAX_NAMES. */
-stStatus st_post_tests(const stCsvRows *rows, stPostNames *tests, char *err, size_t errsz);
+ST_API stStatus st_post_tests(const stCsvRows *rows, stPostNames *tests, char *err, size_t errsz);
 
 /* The test to use: want when the file has it; without want, the file's only test; else NULL. */
-const char *st_post_pick_test(const stPostNames *tests, const char *want);
+ST_API const char *st_post_pick_test(const stPostNames *tests, const char *want);
 
 /* Table 3.2's pairs: conditions i and j (i != j) are compared when one is the other's caretaker
  * variant, or when neither is a variant. */
-int st_post_compared(const stPostNames *conds, int i, int j);
+ST_API int st_post_compared(const stPostNames *conds, int i, int j);
 
 /* ---- summary.csv: Tables 3.1, 3.2, A.1, A.2 ---- */
 
@@ -53,9 +53,9 @@ typedef struct stPostSamples {
 
 /* The samples of `test` in the rows of st_post_read_summary (which must outlive them).
  * ST_ERR_RANGE beyond ST_POST_MAX_NAMES conditions, ST_ERR_NOMEM. */
-stStatus st_post_samples(const stCsvRows *summary, const char *test, stPostSamples *s, char *err,
+ST_API stStatus st_post_samples(const stCsvRows *summary, const char *test, stPostSamples *s, char *err,
                          size_t errsz);
-void st_post_samples_free(stPostSamples *s);
+ST_API void st_post_samples_free(stPostSamples *s);
 
 /* ---- trials.csv: Fig. 3.11, Table 3.3 ---- */
 
@@ -81,10 +81,10 @@ typedef struct stPostComparisons {
  * row (O(n log n)). name: the file, for messages. ST_ERR_ARG when the test has no NAME0 (or an
  * mwu error, "FILE: NAME against NAME0, run R individual I: ..."), ST_ERR_RANGE (a repetition
  * ST_POST_MAX_REPS or more), ST_ERR_NOMEM. */
-stStatus st_post_compare(const stCsvRows *trials, const char *name, const char *test,
+ST_API stStatus st_post_compare(const stCsvRows *trials, const char *name, const char *test,
                          const stMwuDef *mwu, double alpha, stPostComparisons *out, char *err,
                          size_t errsz);
-void st_post_comparisons_free(stPostComparisons *c);
+ST_API void st_post_comparisons_free(stPostComparisons *c);
 
 #ifdef __cplusplus
 }

@@ -47,7 +47,7 @@ extern "C" {
  * when the inverse kinematics cannot reach the posture's target or the result fails
  * st_posture_check (both possible only with a scene or robot far from the defaults); err
  * names the posture and the reason. */
-stStatus st_posture(const stRobot *robot, const stScene *scene, int primitive, int k,
+ST_API stStatus st_posture(const stRobot *robot, const stScene *scene, int primitive, int k,
                     double qhat[ST_NDOF], char *err, size_t errsz);
 
 /* A variation of an open or grasp start (postures.vary_starts): the palm moved by (dx, dy) m
@@ -62,24 +62,24 @@ typedef struct stPostureVariation {
 } stPostureVariation;
 
 /* The variation that changes nothing: st_posture_varied then gives st_posture's result. */
-void st_posture_variation_none(const stScene *scene, stPostureVariation *v);
+ST_API void st_posture_variation_none(const stScene *scene, stPostureVariation *v);
 
 /* Draws a variation from the scene's postures.vary_* ranges: the offset uniform in a disc of
  * radius vary_offset, the tilt angle uniform in [0, vary_tilt] and its direction uniform, each
  * IK start angle uniform between the ik_* key and its vary_* key; open_high is
  * postures.vary_open_high (not drawn: the stream is the same either way). */
-void st_posture_variation_draw(const stScene *scene, stRng *rng, stPostureVariation *v);
+ST_API void st_posture_variation_draw(const stScene *scene, stRng *rng, stPostureVariation *v);
 
 /* Open or grasp posture k built with variation v, checked as st_posture checks: ST_ERR_RANGE
  * with the reason in err when the IK misses or the SPEC §8 properties fail; ST_ERR_ARG for
  * another primitive (reach starts are far from the object and move starts hold it: neither
  * is varied this way). */
-stStatus st_posture_varied(const stRobot *robot, const stScene *scene, int primitive, int k,
+ST_API stStatus st_posture_varied(const stRobot *robot, const stScene *scene, int primitive, int k,
                            const stPostureVariation *v, double qhat[ST_NDOF], char *err,
                            size_t errsz);
 
 /* All 16 postures: qhat[primitive][k]. */
-stStatus st_postures_all(const stRobot *robot, const stScene *scene,
+ST_API stStatus st_postures_all(const stRobot *robot, const stScene *scene,
                          double qhat[ST_NPRIM][ST_NPOSTURE][ST_NDOF], char *err, size_t errsz);
 
 /* Steps a bang-bang controller needs, in kinematic mode, to bring the palm centre from qhat
@@ -87,13 +87,13 @@ stStatus st_postures_all(const stRobot *robot, const stScene *scene,
  * DOF is driven at full speed towards an inverse-kinematics solution of the reach point, and
  * held once within 0.02 of it. A lower bound on what an evolved controller needs; -1 when not
  * reached within max_steps. */
-int st_posture_reach_steps(const stRobot *robot, const stScene *scene, int k,
+ST_API int st_posture_reach_steps(const stRobot *robot, const stScene *scene, int k,
                            const double qhat[ST_NDOF], int max_steps);
 
 /* 1 when qhat has the SPEC §8 properties of posture k of a primitive (object at scene
  * position k), else 0 with the first failed property in why (nullable). Reach postures are
  * also checked to be distinct from the other three reach postures st_posture computes. */
-int st_posture_check(const stRobot *robot, const stScene *scene, int primitive, int k,
+ST_API int st_posture_check(const stRobot *robot, const stScene *scene, int primitive, int k,
                      const double qhat[ST_NDOF], char *why, size_t n);
 
 #ifdef __cplusplus

@@ -41,8 +41,8 @@ typedef struct stPredDef {
 } stPredDef;
 
 /* The thesis's values. */
-stPredDef st_pred_default_def(void);
-void st_pred_def_from_config(const stConfig *cfg, stPredDef *def);
+ST_API stPredDef st_pred_default_def(void);
+ST_API void st_pred_def_from_config(const stConfig *cfg, stPredDef *def);
 
 /* One caretaker trial. */
 typedef struct stPredTrial {
@@ -63,18 +63,19 @@ typedef struct stPredScore {
 } stPredScore;
 
 /* Scores one trial. ST_ERR_ARG (naming the step) for n < 2, a word outside -1..3, no word
- * at a step t >= 1 (every step after the first must hear one: caretaker.first_step = 1), or an
- * output that is not finite or beyond +-ST_PRED_OUTPUT_MAX. */
-stStatus st_pred_trial(const stPredDef *def, const stPredTrial *t, stPredScore *s, char *err,
+ * at a step t >= 1 (every step after the first must hear one: caretaker.first_step = 1), a
+ * word before the previous one (the caretaker never goes back), or an output that is not
+ * finite or beyond +-ST_PRED_OUTPUT_MAX. */
+ST_API stStatus st_pred_trial(const stPredDef *def, const stPredTrial *t, stPredScore *s, char *err,
                        size_t errsz);
 
 /* d1(p, t) = 1 - (h1(t) - o(p, t)) for one step's outputs (eq. 2.15). */
-double st_pred_d1(const double o[ST_PRED_NWORDS], int p);
+ST_API double st_pred_d1(const double o[ST_PRED_NWORDS], int p);
 
 /* F_pred over ntrials caretaker trials (eq. 2.24): counts[i] = 0 for a trial whose object
  * never reached the target lifted (it adds nothing but still counts in T = ntrials). Writes
  * the summed B_pred (nullable). 0 when ntrials is 0. */
-double st_pred_fitness(const stPredScore *s, const int *counts, int ntrials, double *b_sum);
+ST_API double st_pred_fitness(const stPredScore *s, const int *counts, int ntrials, double *b_sum);
 
 #ifdef __cplusplus
 }

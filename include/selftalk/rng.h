@@ -10,6 +10,8 @@
 
 #include <stdint.h>
 
+#include "selftalk/base.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -44,23 +46,23 @@ typedef struct stRng {
 } stRng;
 
 /* splitmix64's finaliser: a bijective 64-bit mix with good avalanche. */
-uint64_t st_rng_mix64(uint64_t x);
+ST_API uint64_t st_rng_mix64(uint64_t x);
 
 /* Generator for one purpose, keyed by all of its coordinates. */
-stRng st_rng_keyed(uint64_t seed, stRngStream stream, uint64_t generation, uint64_t individual,
+ST_API stRng st_rng_keyed(uint64_t seed, stRngStream stream, uint64_t generation, uint64_t individual,
                    uint64_t trial);
 
 /* Next 64 random bits. */
-uint64_t st_rng_u64(stRng *rng);
+ST_API uint64_t st_rng_u64(stRng *rng);
 
 /* Uniform double in [0, 1) with 53 random bits. */
-double st_rng_uniform(stRng *rng);
+ST_API double st_rng_uniform(stRng *rng);
 
 /* Uniform double in [lo, hi). */
-double st_rng_range(stRng *rng, double lo, double hi);
+ST_API double st_rng_range(stRng *rng, double lo, double hi);
 
 /* True with probability p (p <= 0: never; p >= 1: always). Draws exactly one number. */
-int st_rng_bernoulli(stRng *rng, double p);
+ST_API int st_rng_bernoulli(stRng *rng, double p);
 
 #ifdef __cplusplus
 }

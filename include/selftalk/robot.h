@@ -63,31 +63,31 @@ typedef struct stRobot {
 } stRobot;
 
 /* Loads cfg->robot_urdf and binds it (see st_robot_bind). */
-stStatus st_robot_create(const stConfig *cfg, stRobot **robot, char *err, size_t errsz);
+ST_API stStatus st_robot_create(const stConfig *cfg, stRobot **robot, char *err, size_t errsz);
 
 /* Binds a model (ownership passes to the robot, also on failure) using the [robot] keys.
  * A joint or link the config names that the model lacks is an error naming the key. */
-stStatus st_robot_bind(stModel *model, const stConfig *cfg, const char *source, stRobot **robot,
+ST_API stStatus st_robot_bind(stModel *model, const stConfig *cfg, const char *source, stRobot **robot,
                        char *err, size_t errsz);
 
 /* Nullable: robot. Frees the model too. */
-void st_robot_destroy(stRobot *robot);
+ST_API void st_robot_destroy(stRobot *robot);
 
 /* Angle (rad) of a DOF's master joint at normalised position qhat, and back. */
-double st_robot_dof_angle(const stRobot *r, int dof, double qhat);
-double st_robot_dof_qhat(const stRobot *r, int dof, double angle);
+ST_API double st_robot_dof_angle(const stRobot *r, int dof, double qhat);
+ST_API double st_robot_dof_qhat(const stRobot *r, int dof, double angle);
 
 /* Forward kinematics: world pose of every body for normalised DOF positions qhat[12] (coupled
  * joints at the same normalised position). R: nbody row-major rotations (world <- body);
  * p: nbody origins. Pure; no allocation. */
-void st_robot_fk(const stRobot *r, const double *qhat, double (*R)[9], double (*p)[3]);
+ST_API void st_robot_fk(const stRobot *r, const double *qhat, double (*R)[9], double (*p)[3]);
 
 /* Forward kinematics from one angle per body joint (rad; entries of fixed joints ignored):
  * for dynamic-mode readings and tests where coupled joints differ. */
-void st_robot_fk_angles(const stRobot *r, const double *angle, double (*R)[9], double (*p)[3]);
+ST_API void st_robot_fk_angles(const stRobot *r, const double *angle, double (*R)[9], double (*p)[3]);
 
 /* A world point in the frame of a body at pose (R, p) from st_robot_fk: R^T (world - p). */
-void st_robot_point_local(const double R[9], const double p[3], const double world[3],
+ST_API void st_robot_point_local(const double R[9], const double p[3], const double world[3],
                           double local[3]);
 
 /* A lower bound on the height (world z) that any collision geometry of the robot (*geom_z)
@@ -97,10 +97,10 @@ void st_robot_point_local(const double R[9], const double p[3], const double wor
  * the rest by the triangle inequality over the joint offsets (so not the minimum, a bound).
  * Static geometry counts too: a resting object touching it would be "touched by the robot".
  * Takes some 10-100 ms: computed once per protocol, where an exact early end needs it. */
-void st_robot_lowest_z(const stRobot *r, double tol, double *geom_z, double *palm_z);
+ST_API void st_robot_lowest_z(const stRobot *r, double tol, double *geom_z, double *palm_z);
 
 /* Joint angle of every body (rad, 0 for fixed joints) for normalised DOF positions. */
-void st_robot_angles(const stRobot *r, const double *qhat, double *angle);
+ST_API void st_robot_angles(const stRobot *r, const double *qhat, double *angle);
 
 #ifdef __cplusplus
 }

@@ -58,15 +58,15 @@ typedef struct stScene {
   stPostureDef posture;            /* initial postures (SPEC §8) */
 } stScene;
 
-void st_scene_from_config(const stConfig *cfg, stScene *scene);
+ST_API void st_scene_from_config(const stConfig *cfg, stScene *scene);
 
 /* Object position k (0..3); with_offset adds the uniform x/y offset of reach trials. Nullable:
  * rng when with_offset is 0. */
-void st_scene_object(const stScene *s, int k, int with_offset, stRng *rng, double pos[3]);
+ST_API void st_scene_object(const stScene *s, int k, int with_offset, stRng *rng, double pos[3]);
 
 /* Target k (0, 1 or ST_TARGET_GENERAL) with its uniform x/y/z offset drawn from rng (nullable:
  * no offset). */
-void st_scene_target(const stScene *s, int k, stRng *rng, double pos[3]);
+ST_API void st_scene_target(const stScene *s, int k, stRng *rng, double pos[3]);
 
 #ifdef __cplusplus
 }

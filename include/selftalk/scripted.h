@@ -44,19 +44,19 @@ extern "C" {
 typedef struct stScripted stScripted;
 
 /* A controller for the protocol's robot and scene (p must outlive it). */
-stStatus st_scripted_create(const stProtocol *p, stScripted **out, char *err, size_t errsz);
-void st_scripted_destroy(stScripted *s); /* nullable */
+ST_API stStatus st_scripted_create(const stProtocol *p, stScripted **out, char *err, size_t errsz);
+ST_API void st_scripted_destroy(stScripted *s); /* nullable */
 
 /* The controller as an stController (reset clears its state; ninputs 25). */
-stController st_scripted_controller(stScripted *s);
+ST_API stController st_scripted_controller(stScripted *s);
 
 /* What the controller is doing (after its last act): "none", "reach", "open",
  * "grasp:approach|close|hold", "move:secure|lift|carry". For traces. */
-const char *st_scripted_phase(const stScripted *s);
+ST_API const char *st_scripted_phase(const stScripted *s);
 
 /* Main-prim trial `index` (0..15: primitive index / 4, posture index % 4) of generation 0,
  * scored by the library (the primitive scorer of the episode loop). Nullable: trace. */
-stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted *s, int index,
+ST_API stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted *s, int index,
                                 stTrialResult *r, stTraceFn trace, void *ctx, char *err,
                                 size_t errsz);
 
@@ -70,7 +70,7 @@ stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted
  * success is main-prim move's condition (within the radius at some step, still lifted at the
  * end). The solver's generator is keyed by (run seed, generation 0, individual 0, trial
  * 2k + t). Nullable: trace. */
-stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted *s, int k,
+ST_API stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted *s, int k,
                                 int t, stIntTrialResult *r, stTraceFn trace, void *ctx,
                                 char *err, size_t errsz);
 

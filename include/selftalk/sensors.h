@@ -23,7 +23,7 @@ typedef struct stSensorDef {
   double move_max;        /* 2 */
 } stSensorDef;
 
-void st_sensor_def_from_config(const stConfig *cfg, stSensorDef *def);
+ST_API void st_sensor_def_from_config(const stConfig *cfg, stSensorDef *def);
 
 /* The fitness quantities of one step. */
 typedef struct stQuantities {
@@ -40,27 +40,27 @@ typedef struct stQuantities {
   int lifted;          /* the object touches the robot and not the table */
 } stQuantities;
 
-void st_quantities(const stWorld *w, const stSensorDef *def, stQuantities *q);
+ST_API void st_quantities(const stWorld *w, const stSensorDef *def, stQuantities *q);
 
 /* Focus output y read as a choice: 1 target, 0 object. */
-int st_focus_is_target(const stSensorDef *def, double y_focus);
+ST_API int st_focus_is_target(const stSensorDef *def, double y_focus);
 
 /* Focus correctness f_f: 1 - y when the right focus is the object, y when it is the target. */
-double st_focus_correctness(double y_focus, int right_is_target);
+ST_API double st_focus_correctness(double y_focus, int right_is_target);
 
 /* Network inputs (SPEC §4 order) for this step: qhat, touch, focus vector (zero when
  * first_step), linguistic input ling[4] and, when n == 26, the secondary input. focus_target
  * selects the focus point (the target, else the object's current centre). */
-void st_sensor_inputs(const stWorld *w, const stSensorDef *def, const stQuantities *q,
+ST_API void st_sensor_inputs(const stWorld *w, const stSensorDef *def, const stQuantities *q,
                       int focus_target, int first_step, const double *ling, double secondary,
                       double *in, int n);
 
 /* Per-step penalties (SPEC §6). */
-double st_penalty_table(const stWorld *w, const stSensorDef *def);
-double st_penalty_object(const stWorld *w, const stSensorDef *def);
+ST_API double st_penalty_table(const stWorld *w, const stSensorDef *def);
+ST_API double st_penalty_object(const stWorld *w, const stSensorDef *def);
 /* min(move_max, d / move_scale) for the object's displacement d from its start; 0 when
  * d < move_free. */
-double st_penalty_moving(const stWorld *w, const stSensorDef *def);
+ST_API double st_penalty_moving(const stWorld *w, const stSensorDef *def);
 
 #ifdef __cplusplus
 }

@@ -32,7 +32,7 @@ typedef struct stMwuDef {
   double continuity; /* continuity correction of the normal approximation (0.5; 0: none) */
 } stMwuDef;
 
-stMwuDef st_mwu_default_def(void);
+ST_API stMwuDef st_mwu_default_def(void);
 
 typedef enum stMwuMethod { ST_MWU_EXACT = 0, ST_MWU_NORMAL } stMwuMethod;
 
@@ -52,7 +52,7 @@ typedef struct stMwuResult {
  * ST_ERR_ARG when a sample is empty, ST_ERR_RANGE on a non-finite value or a definition out of
  * range, ST_ERR_NOMEM. Nullable: def (the defaults). When every value is the same, sigma is 0:
  * p = 1, z = 0. */
-stStatus st_mwu(const stMwuDef *def, const double *a, int n_a, const double *b, int n_b,
+ST_API stStatus st_mwu(const stMwuDef *def, const double *a, int n_a, const double *b, int n_b,
                 stMwuResult *r, char *err, size_t errsz);
 
 /* The exact two-tailed p of U = u (either U_A or U_B) for samples of n_a and n_b values without
@@ -60,11 +60,11 @@ stStatus st_mwu(const stMwuDef *def, const double *a, int n_a, const double *b, 
  * (1947). Counts are exact integers in double while C(n_a + n_b, n_a) < 2^53 (both at most 25);
  * beyond, their relative error is below 1e-13. 1 <= n_a, n_b <= ST_MWU_EXACT_LIMIT, 0 <= u <=
  * n_a n_b (a fraction is rounded down: U has no fractions without ties). */
-stStatus st_mwu_exact_p(int n_a, int n_b, double u, double *p, char *err, size_t errsz);
+ST_API stStatus st_mwu_exact_p(int n_a, int n_b, double u, double *p, char *err, size_t errsz);
 
 /* The p-quantile (0 <= p <= 1) of n >= 1 values sorted ascending: definition 7,
  * sorted[j] + (h - j)(sorted[j + 1] - sorted[j]) with h = (n - 1) p, j = floor(h). */
-double st_quantile_sorted(const double *sorted, int n, double p);
+ST_API double st_quantile_sorted(const double *sorted, int n, double p);
 
 typedef struct stQuartiles {
   int n;
@@ -73,14 +73,14 @@ typedef struct stQuartiles {
 
 /* The five-number summary of x (any order; x is not changed). Fails with ST_ERR_ARG when
  * n < 1, ST_ERR_RANGE on a non-finite value, ST_ERR_NOMEM. */
-stStatus st_quartiles(const double *x, int n, stQuartiles *q, char *err, size_t errsz);
+ST_API stStatus st_quartiles(const double *x, int n, stQuartiles *q, char *err, size_t errsz);
 
 /* A file of one number per line (./apps/stats mwu, quartiles): lines are trimmed, blank lines
  * and lines starting with '#' skipped; each other line one finite number. *x (freed with
  * free()) holds the *n >= 1 numbers in file order. Read through the bounded reader (at most
  * ST_FILE_MAX bytes, no NUL byte). ST_ERR_IO, ST_ERR_PARSE ("FILE:LINE: 'x' is not a number
  * (expected one number per line)", "FILE: no numbers ..."), ST_ERR_NOMEM. */
-stStatus st_numbers_read(const char *path, double **x, int *n, char *err, size_t errsz);
+ST_API stStatus st_numbers_read(const char *path, double **x, int *n, char *err, size_t errsz);
 
 #ifdef __cplusplus
 }

@@ -8,6 +8,8 @@
 
 #include <stddef.h>
 
+#include "selftalk/base.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -16,16 +18,16 @@ extern "C" {
 enum { ST_PRIM_REACH = 0, ST_PRIM_OPEN, ST_PRIM_GRASP, ST_PRIM_MOVE, ST_NPRIM };
 
 /* "reach", "open", "grasp", "move"; "?" for anything else. */
-const char *st_primitive_name(int primitive);
+ST_API const char *st_primitive_name(int primitive);
 
 /* The primitive named by the len characters at name, or -1. */
-int st_primitive_parse(const char *name, size_t len);
+ST_API int st_primitive_parse(const char *name, size_t len);
 
 /* The stages whose trials are scored per primitive. */
 typedef enum stStage { ST_STAGE_SIMPLE = 0, ST_STAGE_MAIN, ST_STAGE_COUNT } stStage;
 
 /* "simple-prim", "main-prim"; "?" for anything else. */
-const char *st_stage_name(stStage stage);
+ST_API const char *st_stage_name(stStage stage);
 
 /* The integrated stage (thesis §2.9), which is not an stStage: its trials are not per
  * primitive. */
@@ -40,9 +42,9 @@ typedef enum stPostTest {
 } stPostTest;
 
 /* "integration", "robustness", "generalisation"; "?" for anything else. */
-const char *st_post_test_name(stPostTest test);
+ST_API const char *st_post_test_name(stPostTest test);
 /* The test named, or -1. */
-int st_post_test_parse(const char *name);
+ST_API int st_post_test_parse(const char *name);
 
 #ifdef __cplusplus
 }

@@ -31,13 +31,13 @@ typedef struct stTraceCsv {
 } stTraceCsv;
 
 /* The header line. */
-void st_trace_csv_header(const stTraceCsv *c);
+ST_API void st_trace_csv_header(const stTraceCsv *c);
 
 /* One step's row. */
-void st_trace_csv_row(const stTraceCsv *c, const stTraceStep *s);
+ST_API void st_trace_csv_row(const stTraceCsv *c, const stTraceStep *s);
 
 /* st_trace_csv_row as an stTraceFn: ctx is the stTraceCsv. */
-void st_trace_csv_fn(void *ctx, const stTraceStep *s);
+ST_API void st_trace_csv_fn(void *ctx, const stTraceStep *s);
 
 #ifdef __cplusplus
 }

@@ -52,7 +52,7 @@ typedef struct stTrialSpec {
  * trials, open and grasp k as trials 4 + (index - 28) with their own offsets and always a drawn
  * start (the fixed one when no draw is accepted), built whatever postures.vary_trials says; with
  * vary_trials = extra the fixed trials keep their fixed starts. */
-void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t);
+ST_API void st_trial_spec(const stProtocol *p, stStage stage, int generation, int index, stTrialSpec *t);
 
 /* A stage's trials in one generation, built once and read by every individual's evaluation
  * (st_stage_evaluate keeps the last one in its workspace): each is keyed by (seed, generation,
@@ -66,42 +66,42 @@ typedef struct stTrialTable {
                                         p->primitives evaluates; the others zero */
 } stTrialTable;
 
-void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table);
+ST_API void st_trial_table(const stProtocol *p, stStage stage, int generation, stTrialTable *table);
 
 /* The trial a hand-over trial falls back to when its roll-in did not hand over: the fixed
  * main-prim trial of its primitive and posture, from the fixed posture (never a drawn start,
  * even in generations that replace), with the hand-over trial's target and index. */
-void st_handover_fallback(const stProtocol *p, const stTrialSpec *handover, stTrialSpec *t);
+ST_API void st_handover_fallback(const stProtocol *p, const stTrialSpec *handover, stTrialSpec *t);
 
 /* The key of the dynamic solver's generator for trial `index` of a generation run by
  * `individual` (its kind's seed_key: fixed and varied trials ST_RNG_TRIAL, hand-over trials
  * ST_RNG_HANDOVER_SOLVER). With stage.handover_rollin = elite a hand-over trial takes individual
  * 0's key (the elite's) whoever runs it, so that every individual's roll-in is the elite's, bit
  * for bit. */
-uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index);
+ST_API uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, int index);
 
 /* The trial indices of a stage: up to the last indexed kind it has trials of (16; in main-prim
  * 28 with stage.handover, 36 with postures.vary_trials = extra; st_stage_trial_active says which
  * of them run). */
-int st_stage_trials(const stProtocol *p, stStage stage);
+ST_API int st_stage_trials(const stProtocol *p, stStage stage);
 
 /* 1 when the open and grasp fixed trials of `generation` start from drawn postures instead of
  * theirs: postures.vary_starts with vary_trials = replace, or with extra in the first
  * postures.vary_replace_generations generations (the varied kind's rule,
  * lib/episode/trials/varied.c). */
-int st_vary_replacing(const stConfig *cfg, int generation);
+ST_API int st_vary_replacing(const stConfig *cfg, int generation);
 
 /* 1 when an evaluation of `stage` in `generation` runs trial `index` (< st_stage_trials): its
  * primitive is one p->primitives evaluates, and its kind runs then (st_trial_kind_runs). */
-int st_stage_trial_active(const stProtocol *p, stStage stage, int generation, int index);
+ST_API int st_stage_trial_active(const stProtocol *p, stStage stage, int generation, int index);
 
 /* The primitive of trial `index` of a stage. */
-int st_trial_primitive(int index);
+ST_API int st_trial_primitive(int index);
 
 /* The episode of a trial: its spec (kinematic in simple-prim, dynamic in main-prim; seed_key
  * keys the dynamic solver's generator) and its words (the primitive's word every step, no
  * secondary input). */
-void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_key,
+ST_API void st_trial_episode(const stProtocol *p, const stTrialSpec *t, uint64_t seed_key,
                       stEpisodeSpec *e, stWords *words);
 
 typedef struct stTrialResult {
@@ -133,19 +133,19 @@ typedef struct stTrialScore {
   stTrialResult r;
 } stTrialScore;
 
-void st_score_begin(stTrialScore *sc, const stTrialSpec *t);
+ST_API void st_score_begin(stTrialScore *sc, const stTrialSpec *t);
 
 /* Scores the state after control step `step` (0-based, consecutive): q are its quantities,
  * y_focus the focus output that chose it, penalty the sum of the penalties that apply
  * (st_penalty_mask), fell / unstable what the world reports. Writes S and P (nullable) and
  * returns the stTrialEnd that ends the trial at this step, or -1 to go on. */
-int st_score_step(stTrialScore *sc, const stFitnessDef *def, int step, const stQuantities *q,
+ST_API int st_score_step(stTrialScore *sc, const stFitnessDef *def, int step, const stQuantities *q,
                   double y_focus, double focus_threshold, double penalty, int fell, int unstable,
                   double *S, double *P);
 
 /* Fills the steps a premature end skipped and decides end-of-trial successes (main-prim grasp:
  * object centre above the table top; move: reached the target and still lifted). */
-void st_score_end(stTrialScore *sc, const stFitnessDef *def, double obj_z, double table_top_z,
+ST_API void st_score_end(stTrialScore *sc, const stFitnessDef *def, double obj_z, double table_top_z,
                   stTrialResult *r);
 
 /* The primitive scorer of the episode loop: st_score_* on the episode's steps, with the
@@ -157,7 +157,7 @@ typedef struct stPrimScorer {
   stTrialResult *r;
 } stPrimScorer;
 
-stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
+ST_API stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec *t,
                         stTrialResult *r);
 
 /* Runs one trial: st_trial_episode, the primitive scorer (its kind's score hook), st_episode_run
@@ -167,7 +167,7 @@ stScorer st_prim_scorer(stPrimScorer *s, const stProtocol *p, const stTrialSpec 
  * stage.handover_fallback runs its fallback next: the trace sees the roll-in's steps, then the
  * fallback's from step 0). seed_key keys the dynamic solver's generator (unused in kinematic
  * mode). Nullable: trace. */
-stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
+ST_API stStatus st_trial_run(const stProtocol *p, stWorkspace *ws, const stTrialSpec *t,
                       const stController *ctl, uint64_t seed_key, stTrialResult *r,
                       stTraceFn trace, void *ctx, char *err, size_t errsz);
 
@@ -194,7 +194,7 @@ typedef struct stEvaluation {
  * (st_rollin_controller) exactly when st_stage_rollin_elite says so; NULL otherwise.
  * ST_ERR_ARG naming stage.handover_rollin when rollin is missing where it is needed or given
  * where it is not, or the networks cannot take over from each other (not base networks). */
-stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
+ST_API stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, int generation,
                            int individual, const stNetParams *net, const stNetParams *rollin,
                            stEvaluation *e, char *err, size_t errsz);
 
@@ -203,12 +203,12 @@ stStatus st_stage_evaluate(const stProtocol *p, stWorkspace *ws, stStage stage, 
  * chained trials, its fixed trials from their fixed starts (none drawn) and its chained trials
  * (the hand-over and varied trials train the chain; the fixed ones are the thesis's, the
  * chained ones the integration test's). */
-int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e);
+ST_API int st_evaluation_completes(const stConfig *cfg, const stEvaluation *e);
 
 /* 1 when an evaluation of `stage` has hand-over trials rolled in by the elite (main-prim,
  * stage.handover, stage.handover_rollin = elite): st_stage_evaluate then needs the elite's
  * network. */
-int st_stage_rollin_elite(const stProtocol *p, stStage stage);
+ST_API int st_stage_rollin_elite(const stProtocol *p, stStage stage);
 
 #ifdef __cplusplus
 }

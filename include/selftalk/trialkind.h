@@ -133,18 +133,18 @@ typedef struct stTrialKindDef {
 } stTrialKindDef;
 
 /* Row k (k < ST_TRIAL_KIND_COUNT). */
-const stTrialKindDef *st_trial_kind_def(stTrialKind k);
+ST_API const stTrialKindDef *st_trial_kind_def(stTrialKind k);
 
 /* The kind of main-prim trial index (0 <= index < ST_MAIN_TRIALS_MAX) and its first index. */
-stTrialKind st_trial_kind(int index);
-int st_trial_kind_first(stTrialKind k);
+ST_API stTrialKind st_trial_kind(int index);
+ST_API int st_trial_kind_first(stTrialKind k);
 
 /* The trials of kind k in an evaluation of stage (0: none; its count hook). */
-int st_trial_kind_count(const stConfig *cfg, stStage stage, stTrialKind k);
+ST_API int st_trial_kind_count(const stConfig *cfg, stStage stage, stTrialKind k);
 
 /* 1 when kind k's trials run in an evaluation of stage in generation: it has trials there and
  * its active hook says so. */
-int st_trial_kind_runs(const stConfig *cfg, stStage stage, int generation, stTrialKind k);
+ST_API int st_trial_kind_runs(const stConfig *cfg, stStage stage, int generation, stTrialKind k);
 
 /* The kinds' cross-key rules (their check hooks, and each family's keys refused while the kind
  * is off), in table order: ST_ERR_RANGE with "key 'section.key': problem (expected ...)",
@@ -152,7 +152,7 @@ int st_trial_kind_runs(const stConfig *cfg, stStage stage, int generation, stTri
  * a config built in code or with --set options). Every evolution run and protocol checks
  * them (st_evolve_run, st_protocol_create); a program reading a config file checks them after
  * st_config_load to name the line. */
-stStatus st_trial_kinds_check(const stConfig *cfg, const char *path, char *err, size_t errsz);
+ST_API stStatus st_trial_kinds_check(const stConfig *cfg, const char *path, char *err, size_t errsz);
 
 #ifdef __cplusplus
 }

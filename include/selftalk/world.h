@@ -45,29 +45,29 @@ typedef struct stWorld {
 } stWorld;
 
 /* Allocates a world for a robot and scene (both must outlive it). */
-stStatus st_world_create(const stRobot *robot, const stScene *scene, stWorld **world, char *err,
+ST_API stStatus st_world_create(const stRobot *robot, const stScene *scene, stWorld **world, char *err,
                          size_t errsz);
 
 /* Nullable: world. */
-void st_world_destroy(stWorld *world);
+ST_API void st_world_destroy(stWorld *world);
 
 /* Starts a trial: posture, object centre, target; computes poses and contacts. */
-void st_world_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]);
+ST_API void st_world_reset(stWorld *w, const double *qhat, const double obj[3], const double target[3]);
 
 /* Actuation law of SPEC §3 for one DOF over one control step: joint velocity
  * alpha (y - qhat) deg/s clamped to +-vmax, integrated over dt, kept within [0, 1]. Returns
  * the new qhat. range_deg is the DOF's range in degrees. */
-double st_actuate(double qhat, double y, double alpha, double vmax_deg, double dt, double range_deg);
+ST_API double st_actuate(double qhat, double y, double alpha, double vmax_deg, double dt, double range_deg);
 
 /* One kinematic control step: moves every DOF towards the desired normalised positions
  * y[12] (the network's outputs 0-11), then updates poses and contacts. */
-void st_world_step_kinematic(stWorld *w, const double *y);
+ST_API void st_world_step_kinematic(stWorld *w, const double *y);
 
 /* Recomputes poses and contacts for the current qhat (after changing it directly). */
-void st_world_update(stWorld *w);
+ST_API void st_world_update(stWorld *w);
 
 /* World position of a point given in a body's frame. */
-void st_world_point(const stWorld *w, int body, const double local[3], double out[3]);
+ST_API void st_world_point(const stWorld *w, int body, const double local[3], double out[3]);
 
 /* ---- shapes: what collides, for pictures (docs/PROTOCOL.md, "Robot pictures") ------------- */
 
@@ -100,10 +100,10 @@ typedef struct stShape {
  * rotation), the table and the target. Fills out[0 .. min(n, max) - 1] and returns n, the
  * number of shapes (constant for a world); nullable out when max is 0. Reads the state only:
  * calling it never changes a simulation. */
-int st_world_shapes(const stWorld *w, stShape *out, int max);
+ST_API int st_world_shapes(const stWorld *w, stShape *out, int max);
 
 /* "robot", "ball", "table", "target"; "?" for another value. */
-const char *st_shape_kind_name(int kind);
+ST_API const char *st_shape_kind_name(int kind);
 
 /* ---- dynamic mode (thesis §2.1, SPEC §3; lib/world/dynworld.c, docs/PROTOCOL.md "Dynamic mode") --
  * An ODE world per stWorld: the robot's links as rigid bodies (massless frames and fixed-joint
@@ -148,24 +148,25 @@ typedef struct stDynDef {
 #undef ST__DYN_STR
 
 /* Fills def from the [dynamics] keys. */
-void st_dyn_def_from_config(const stConfig *cfg, stDynDef *def);
+ST_API void st_dyn_def_from_config(const stConfig *cfg, stDynDef *def);
 
 /* Allocates a dynamic world (robot, scene and def are read at creation; robot and scene must
  * outlive the world). Fails with ST_ERR_RANGE on a bad def (e.g. a control step that is not a
  * whole number of sub-steps) and ST_ERR_MODEL when the model cannot be simulated (a moving
  * link without mass, a bad inertia, an unsupported geometry); err names the cause. The world
- * must be reset (st_world_reset) before it is stepped. With solver quickstep, creation checks
- * once per process that ODE's random generator is the library's per-world one (see
- * docs/PROTOCOL.md, "Dynamic mode"); when it is not, the world uses solver step instead and
- * st_world_dynamic_info reports it. */
-stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, const stDynDef *def,
+ * must be reset (st_world_reset) before it is stepped. ST_ERR_RANGE, saying why, for an ODE
+ * that is not double precision, for solver quickstep where ODE's random generator cannot be the
+ * library's per-world one, and for lcp schur where ODE's LCP cannot reach the library's (both:
+ * in a program linked with the shared library, or with another ODE than 0.16.2: checked once
+ * per process with a probe step; docs/PROTOCOL.md, "Dynamic mode"). */
+ST_API stStatus st_world_create_dynamic(const stRobot *robot, const stScene *scene, const stDynDef *def,
                                  stWorld **world, char *err, size_t errsz);
 
 /* Key of the per-trial random stream of quickstep's constraint shuffling, used by the next
  * st_world_reset (0 until set). Give each trial its own key (e.g. from st_rng_keyed); equal
  * keys and inputs give bit-identical trials. Solver step draws no random numbers; no effect
  * on a kinematic world. */
-void st_world_set_seed(stWorld *w, uint64_t key);
+ST_API void st_world_set_seed(stWorld *w, uint64_t key);
 
 /* One dynamic control step (robot->dt): every joint's motor runs at alpha_dynamic (y - qhat)
  * degrees/s (qhat of that joint, y of its DOF clamped to [0, 1]; the velocity clamped to
@@ -174,41 +175,41 @@ void st_world_set_seed(stWorld *w, uint64_t key);
  * one by one. Then the stWorld fields are filled and step is incremented. Does nothing once
  * the world is unstable; a non-finite y makes it unstable. On a kinematic world it is
  * st_world_step_kinematic. */
-void st_world_step_dynamic(stWorld *w, const double *y);
+ST_API void st_world_step_dynamic(stWorld *w, const double *y);
 
 /* One control step in the world's own mode (kinematic or dynamic). */
-void st_world_step(stWorld *w, const double *y);
+ST_API void st_world_step(stWorld *w, const double *y);
 
 /* Switches the object-table collision (on after every reset). Grasp trials switch it off after
  * 40 steps, move trials after 10 (thesis §2.8.1.2): the object then falls through the table
  * unless the hand holds it. The contacts of the next sub-step follow the new setting. */
-void st_world_set_object_table_collision(stWorld *w, int on);
+ST_API void st_world_set_object_table_collision(stWorld *w, int on);
 
 /* 1 when the object has fallen: its centre is more than fall_margin below the table top, or
  * it is outside the table's x/y extent and below the table top. 0 in kinematic mode. */
-int st_world_object_fell(const stWorld *w);
+ST_API int st_world_object_fell(const stWorld *w);
 
 /* An upper bound on the height of the object's centre from now on for as long as no robot part
  * touches it: its height plus its kinetic energy (linear and rotational) over m g. Gravity,
  * the floor and the table cannot lift it higher (no restitution: contacts do not bounce;
  * ODE's contact correction can add a little, which the caller's margin must cover).
  * +inf in kinematic mode or without gravity. */
-double st_world_object_ceiling(const stWorld *w);
+ST_API double st_world_object_ceiling(const stWorld *w);
 
 /* 1 when the simulation diverged (NaN or infinite values, a body faster than unstable_speed or
  * unstable_spin, a joint beyond its range by more than limit_tolerance, a non-finite
  * command): the caller must end the trial as a failure (the world stays frozen until the next
  * reset). 0 for a kinematic world. */
-int st_world_unstable(const stWorld *w);
+ST_API int st_world_unstable(const stWorld *w);
 
 /* Why the world is unstable, e.g. "step 12: body 'l_hand' moves at 73.2 m/s (unstable_speed
  * 50)"; "" when stable. Owned by the world, valid until its next reset. */
-const char *st_world_unstable_reason(const stWorld *w);
+ST_API const char *st_world_unstable_reason(const stWorld *w);
 
 /* Joint angle of every body (rad, robot->nbody entries, 0 for fixed joints): in dynamic mode
  * the simulated joints' angles, which may lie slightly outside their range (qhat is clamped
  * to [0, 1]); in kinematic mode those of qhat. */
-void st_world_joint_angles(const stWorld *w, double *angle);
+ST_API void st_world_joint_angles(const stWorld *w, double *angle);
 
 /* The kinds of colliding pairs (stDynInfo.contact_points): a robot geometry with the table, with
  * the object's sphere, with the object's base; the object (sphere or base) with the table, with
@@ -229,8 +230,10 @@ typedef struct stDynInfo {
   int kinematic_hinges; /* of which exact servos (dynamics.kinematic_joints): not in ODE's step */
   int geoms;           /* robot collision geometries */
   int substeps;        /* sub-steps per control step */
-  int solver;          /* solver in use (ST_DYN_*), after the random-generator check */
-  int rand_interposed; /* 1 when quickstep's shuffling uses the per-world generator */
+  int solver;          /* solver in use (ST_DYN_*) */
+  int rand_interposed; /* 1 when quickstep's shuffling can use the per-world generator (else
+                          dynamics.solver = quickstep is refused: the shared library, another
+                          ODE) */
   long solver_warnings; /* ODE warnings since the last reset (e.g. "LCP internal error": a
                            degenerate set of contacts) */
   long solver_retries;  /* sub-steps redone with softer constraints after such a warning */
@@ -256,7 +259,7 @@ typedef struct stDynInfo {
 } stDynInfo;
 
 /* Fills info (all zero for a kinematic world). */
-void st_world_dynamic_info(const stWorld *w, stDynInfo *info);
+ST_API void st_world_dynamic_info(const stWorld *w, stDynInfo *info);
 
 #ifdef __cplusplus
 }

@@ -50,21 +50,20 @@ static stStatus expand_item(fileList *l, const char *item, char *err, size_t err
 /* the comma-separated items of integrated.populations, patterns expanded */
 static stStatus expand_list(const char *spec, fileList *l, char *err, size_t errsz) {
   char item[ST_CONFIG_STR_MAX];
-  for (const char *s = spec;;) {
-    while (*s == ' ' || *s == '\t') s++;
-    size_t len = strcspn(s, ",");
-    size_t end = len;
-    while (end > 0 && (s[end - 1] == ' ' || s[end - 1] == '\t')) end--;
-    if (end == 0 || end >= sizeof item)
+  const int n = st__list_count(spec);
+  for (int i = 0; i < (n ? n : 1); i++) { /* "": one empty item */
+    const char *at = spec;
+    size_t len = 0;
+    if (n) st__list_item(spec, i, &at, &len);
+    if (len == 0 || len >= sizeof item)
       return st__errf(err, errsz, "key 'integrated.populations': '%s': an empty or overlong item "
                       "(expected FILE[,FILE]...)", spec), ST_ERR_PARSE;
-    memcpy(item, s, end);
-    item[end] = 0;
+    memcpy(item, at, len);
+    item[len] = 0;
     stStatus st = expand_item(l, item, err, errsz);
     if (st) return st;
-    if (!s[len]) return ST_OK;
-    s += len + 1;
   }
+  return ST_OK;
 }
 
 /* the first `top` genotypes of every file, file by file */

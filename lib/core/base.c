@@ -85,6 +85,22 @@ int st__text_line(const char **p, const char *end, const char **line, size_t *le
   return 1;
 }
 
+int st__list_count(const char *list) {
+  if (!*list) return 0;
+  int n = 1;
+  for (; *list; list++) n += *list == ',';
+  return n;
+}
+
+void st__list_item(const char *list, int i, const char **item, size_t *len) {
+  for (; i > 0; i--) list = strchr(list, ',') + 1; /* i < st__list_count: the commas are there */
+  while (*list == ' ') list++;
+  size_t n = strcspn(list, ",");
+  while (n && list[n - 1] == ' ') n--;
+  *item = list;
+  *len = n;
+}
+
 size_t st__strlcpy(char *dst, const char *src, size_t n) {
   size_t len = strlen(src);
   if (n) {

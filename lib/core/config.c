@@ -400,6 +400,36 @@ static int str_unwritable(const char *v, char *msg, size_t n) {
   return 0;
 }
 
+/* the keys whose value is a comma-separated list: every item must be there ("a,,b", "a," and
+ * ",a" were read as "a,b" by some readers and refused by others); an empty list is the key's
+ * own business (dynamics.adaptive_joints: none) */
+static int is_list_key(const stConfigKey *k) {
+  static const char *const lists[] = {"robot.dof_joints", "robot.touch_links", "robot.tip_frames",
+                                      "stage.primitives", "integrated.populations",
+                                      "dynamics.kinematic_joints", "dynamics.adaptive_joints"};
+  const size_t ns = strlen(k->section);
+  for (size_t i = 0; i < sizeof lists / sizeof lists[0]; i++)
+    if (!strncmp(lists[i], k->section, ns) && lists[i][ns] == '.' && !strcmp(lists[i] + ns + 1, k->name))
+      return 1;
+  return 0;
+}
+
+/* a list value with an empty item; returns 1 with msg */
+static int list_bad(const char *v, char *msg, size_t n) {
+  const int count = st__list_count(v);
+  for (int i = 0; i < count; i++) {
+    const char *item;
+    size_t len;
+    st__list_item(v, i, &item, &len);
+    if (!len) {
+      snprintf(msg, n, "'%s': item %d of %d is empty (expected comma-separated items, none empty)",
+               v, i + 1, count);
+      return 1;
+    }
+  }
+  return 0;
+}
+
 /* parses value into cfg; on failure writes "problem (expected ...)" into msg */
 static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value, char *msg,
                           size_t n) {
@@ -454,6 +484,7 @@ static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value
         return ST_ERR_RANGE;
       }
       if (str_unwritable(value, msg, n)) return ST_ERR_PARSE;
+      if (is_list_key(k) && list_bad(value, msg, n)) return ST_ERR_PARSE;
       if (strlen(k->name) + 3 + strlen(value) > INI_MAX_LINE - 2) {
         snprintf(msg, n, "value of %zu characters too long for a config line (expected at most "
                  "%zu: '%s = VALUE' must fit the %d characters of a line)", strlen(value),
@@ -472,16 +503,14 @@ unsigned st_config_primitive_mask(const stConfig *cfg) {
   ST_ASSERT(cfg);
   unsigned mask = 0;
   const char *s = cfg->stage_primitives;
-  for (;;) {
-    while (*s == ' ' || *s == '\t') s++;
-    size_t len = strcspn(s, ",");
-    size_t end = len;
-    while (end > 0 && (s[end - 1] == ' ' || s[end - 1] == '\t')) end--;
-    const int found = st_primitive_parse(s, end);
+  const int n = st__list_count(s);
+  for (int i = 0; i < n; i++) {
+    const char *item;
+    size_t len;
+    st__list_item(s, i, &item, &len);
+    const int found = st_primitive_parse(item, len);
     if (found < 0) return 0; /* an unknown or empty name */
     mask |= 1u << found;
-    if (!s[len]) break;
-    s += len + 1;
   }
   return mask;
 }
@@ -522,6 +551,40 @@ static int check_integrated(const stConfig *c, char *msg, size_t n) {
     snprintf(msg, n, "empty (expected the primitive-stage population files to start from)");
     return st_config_find("integrated", "populations");
   }
+  /* the gate holds self talk's words: a condition without self talk (CT, NI) has none */
+  if (c->integrated_selftalk_gate != ST_SELFTALK_GATE_NONE &&
+      c->integrated_words_even != ST_CFG_WORDS_SELFTALK &&
+      c->integrated_words_odd != ST_CFG_WORDS_SELFTALK) {
+    char even[32], odd[32];
+    choice_at(g_keys[st_config_find("integrated", "words_even")].choices,
+              c->integrated_words_even, even, sizeof even);
+    choice_at(g_keys[st_config_find("integrated", "words_odd")].choices,
+              c->integrated_words_odd, odd, sizeof odd);
+    snprintf(msg, n, "it holds self talk's words, and integrated.words_even = %s, words_odd = %s "
+             "give no self talk (expected selftalk in words_even or words_odd, or the key left "
+             "out)", even, odd);
+    return st_config_find("integrated", "selftalk_gate");
+  }
+  return -1;
+}
+
+static int is_default(const stConfig *c, const stConfig *d, const stConfigKey *k);
+
+/* quickstep's own parameters (dynamics.solver 0 = quickstep, its first choice): the direct
+ * solver has no iterations and no over-relaxation, so changed under it they would do nothing */
+static int check_quickstep_keys(const stConfig *c, char *msg, size_t n) {
+  if (c->dynamics_solver == 0) return -1;
+  stConfig d;
+  st_config_default(&d);
+  static const char *const names[2] = {"iterations", "sor_w"};
+  static const char *const what[2] = {"quickstep's iterations", "quickstep's over-relaxation"};
+  for (int j = 0; j < 2; j++) {
+    const int i = st_config_find("dynamics", names[j]);
+    if (is_default(c, &d, &g_keys[i])) continue;
+    snprintf(msg, n, "it shapes %s, which dynamics.solver = step turns off (expected "
+             "dynamics.solver = quickstep, or the key left out)", what[j]);
+    return i;
+  }
   return -1;
 }
 
@@ -530,6 +593,7 @@ static int check_rules(const stConfig *c, char *msg, size_t n) {
   /* the trial kinds' rules are their rows' (selftalk/trialkind.h: st_trial_kinds_check) */
   int k = check_integrated(c, msg, n);
   if (k >= 0) return k;
+  if ((k = check_quickstep_keys(c, msg, n)) >= 0) return k;
   if (!st_config_primitive_mask(c)) {
     snprintf(msg, n, "'%s' is not a list of primitives (expected a comma-separated subset of "
              "reach,open,grasp,move)", c->stage_primitives);
@@ -589,6 +653,8 @@ static int check_range(const stConfig *c, const stConfigKey *k, char *msg, size_
     char b[64];
     if (choice_at(k->choices, *CFIELD(c, k, int), b, sizeof b))
       return snprintf(msg, n, "choice %d does not exist (expected %s)", *CFIELD(c, k, int), exp), -1;
+  } else if (k->type == ST_CFG_STR && is_list_key(k) && list_bad(CFIELD(c, k, char), msg, n)) {
+    return -1;
   }
   return 0;
 }
@@ -722,12 +788,17 @@ static void fail(loader *L, stStatus st, const char *fmt, const char *a, const c
   snprintf(L->msg, sizeof L->msg, "%s:%d: %s", L->path, L->lineno, tail);
 }
 
-/* the next line of the text (with its newline) into L->buf; -1 at the end */
+/* the next line of the text into L->buf, ended by "\n" whatever ended it in the file: "\n",
+ * "\r\n" or a lone "\r" (old Mac files: read as lines, not as one line whose keys inih would
+ * never see); -1 at the end */
 static int next_line(loader *L) {
-  const char *line;
-  size_t len;
-  int newline;
-  if (!st__text_line(&L->text, L->end, &line, &len, &newline)) return -1;
+  if (L->text >= L->end) return -1;
+  const char *line = L->text;
+  size_t len = 0;
+  while (line + len < L->end && line[len] != '\n' && line[len] != '\r') len++;
+  const char *e = line + len;
+  const int newline = e < L->end;
+  L->text = !newline ? e : e[0] == '\r' && e + 1 < L->end && e[1] == '\n' ? e + 2 : e + 1;
   const size_t n = len + (size_t)newline; /* with its newline */
   if (n + 1 > L->cap) {
     char *b = realloc(L->buf, n + 1);
@@ -738,7 +809,8 @@ static int next_line(loader *L) {
     L->buf = b;
     L->cap = n + 1;
   }
-  memcpy(L->buf, line, n);
+  memcpy(L->buf, line, len);
+  if (newline) L->buf[len] = '\n';
   L->buf[n] = 0;
   return 0;
 }
@@ -762,6 +834,16 @@ static char *reader(char *str, int num, void *stream) {
     if (p[1 + n] == ']' && n < sizeof name) {
       memcpy(name, p + 1, n);
       name[n] = 0;
+      /* inih drops what follows ']': "[ga] population = 9" would lose the key */
+      const char *rest = p + 2 + n;
+      while (isspace((unsigned char)*rest)) rest++;
+      if (*rest && *rest != ';' && *rest != '#') {
+        char after[64];
+        snprintf(after, sizeof after, "%.*s", (int)strcspn(rest, "\n"), rest);
+        fail(L, ST_ERR_PARSE, "section [%s]: '%s' after its ']' (expected nothing but a comment "
+             "there: a key goes on a line of its own)", name, after, "");
+        return NULL;
+      }
       if (!section_known(name)) {
         char known[256] = "";
         for (int i = 0; i < NKEYS; i++)

@@ -70,6 +70,14 @@ size_t st__strlcpy(char *dst, const char *src, size_t n);
  * past it. Returns 0 at the end of the text, 1 otherwise. */
 int st__text_line(const char **p, const char *end, const char **line, size_t *len, int *newline);
 
+/* Comma-separated list values of config keys (robot.dof_joints, stage.primitives,
+ * integrated.populations, dynamics.kinematic_joints, ...), read alike everywhere: the number of
+ * items (0 for "", else commas + 1: "a," has two, the second empty) and item i (0 <= i < count)
+ * without the spaces around it, *len 0 for an empty item. lib/core/config.c refuses empty items
+ * in every list key; the readers of the lists go through these two. */
+int st__list_count(const char *list);
+void st__list_item(const char *list, int i, const char **item, size_t *len);
+
 /* A text file's reader: st_text_read (at most ST_FILE_MAX bytes, no NUL byte), then
  * parse(path, text, len, ctx, ...) on the text, which it may change in place; the text is freed
  * after. Returns the first failure. */

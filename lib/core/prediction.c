@@ -95,6 +95,10 @@ static stStatus check_trial(const stPredTrial *t, char *err, size_t errsz) {
     if (k > 0 && t->word[k] < 0)
       return st__errf(err, errsz, "prediction: step %d: no word (expected the caretaker to "
                       "speak at every step after the first)", k), ST_ERR_ARG;
+    if (k > 0 && t->word[k] < t->word[k - 1])
+      return st__errf(err, errsz, "prediction: step %d: word %d after %d (expected the "
+                      "caretaker's words in order, never back)", k, t->word[k], t->word[k - 1]),
+             ST_ERR_ARG;
     for (int p = 0; p < ST_PRED_NWORDS; p++)
       if (!(fabs(t->o[k][p]) <= ST_PRED_OUTPUT_MAX))
         return st__errf(err, errsz, "prediction: step %d: output %d is %g (expected a finite "

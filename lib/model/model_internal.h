@@ -18,7 +18,8 @@ extern "C" {
 stModel *st__model_alloc(int nbody, int ngeom, int nvert, int ntri);
 
 /* Splits a config value "a, b,c" into at most max names (spaces around a name dropped);
- * returns how many names the list has (possibly more than max), -1 if one is too long. */
+ * returns how many names the list has (possibly more than max), -1 if one is empty or too
+ * long (st__list_item: the lists of every config key are read alike). */
 int st__split_names(const char *list, char names[][ST_NAME_MAX], int max);
 
 /* st_model_load_urdf's importer (the readers' pattern, core/readers.h: st_file_read, then

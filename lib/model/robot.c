@@ -9,20 +9,16 @@
 #include "model/model_internal.h"
 
 int st__split_names(const char *list, char names[][ST_NAME_MAX], int max) {
-  int n = 0;
-  const char *p = list;
-  while (*p) {
-    while (*p == ' ' || *p == ',') p++;
-    if (!*p) break;
-    size_t len = strcspn(p, ",");
-    while (len && p[len - 1] == ' ') len--;
-    if (len >= ST_NAME_MAX) return -1;
-    if (n < max) {
-      memcpy(names[n], p, len);
-      names[n][len] = 0;
+  const int n = st__list_count(list);
+  for (int i = 0; i < n; i++) {
+    const char *item;
+    size_t len;
+    st__list_item(list, i, &item, &len);
+    if (!len || len >= ST_NAME_MAX) return -1; /* the config refuses empty items */
+    if (i < max) {
+      memcpy(names[i], item, len);
+      names[i][len] = 0;
     }
-    n++;
-    p += strcspn(p, ",");
   }
   return n;
 }

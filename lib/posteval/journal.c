@@ -54,10 +54,68 @@ static uint64_t fnv_config(uint64_t h, const stConfig *cfg) {
   return h;
 }
 
-uint64_t st__post_fingerprint(const stConfig *cfg, stPostTest test, int variant,
-                              const char *condition, const stPostIndividual *ind, int nind) {
+/* 8 bytes, least significant first: the same fingerprint on any byte order */
+static uint64_t fnv_u64(uint64_t h, uint64_t v) {
+  unsigned char b[8];
+  for (int i = 0; i < 8; i++) b[i] = (unsigned char)(v >> (8 * i));
+  return fnv(h, b, sizeof b);
+}
+
+static uint64_t fnv_reals(uint64_t h, const double *v, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    uint64_t bits;
+    memcpy(&bits, &v[i], sizeof bits);
+    h = fnv_u64(h, bits);
+  }
+  return h;
+}
+
+static uint64_t fnv_ints(uint64_t h, const int *v, size_t n) {
+  for (size_t i = 0; i < n; i++) h = fnv_u64(h, (uint64_t)(int64_t)v[i]);
+  return h;
+}
+
+/* the robot model: everything the importer took from the URDF and its meshes (issue 48: a
+ * URDF changed in place, under the same robot.urdf, made another test's journal resumable).
+ * What the file holds that the model does not (comments, visual elements) changes no result */
+static uint64_t fnv_model(uint64_t h, const stModel *m) {
+  const size_t nb = (size_t)m->nbody, ng = (size_t)m->ngeom;
+  h = fnv_ints(h, (const int[]){m->nbody, m->ngeom, m->nvert, m->ntri}, 4);
+  for (size_t b = 0; b < nb; b++) h = fnv_str(fnv_str(h, m->body_name[b]), m->jnt_name[b]);
+  h = fnv_ints(h, m->body_parent, nb);
+  h = fnv_reals(h, m->body_mass, nb);
+  h = fnv_reals(h, m->body_com[0], 3 * nb);
+  h = fnv_reals(h, m->body_inertia[0], 9 * nb);
+  h = fnv_ints(h, m->jnt_type, nb);
+  h = fnv_reals(h, m->jnt_pos[0], 3 * nb);
+  h = fnv_reals(h, m->jnt_rot[0], 9 * nb);
+  h = fnv_reals(h, m->jnt_axis[0], 3 * nb);
+  h = fnv_reals(h, m->jnt_range[0], 2 * nb);
+  h = fnv_reals(h, m->jnt_effort, nb);
+  h = fnv_reals(h, m->jnt_velocity, nb);
+  h = fnv_ints(h, m->jnt_mimic, nb);
+  h = fnv_reals(h, m->jnt_mimic_mult, nb);
+  h = fnv_reals(h, m->jnt_mimic_offset, nb);
+  h = fnv_ints(h, m->geom_body, ng);
+  h = fnv_ints(h, m->geom_type, ng);
+  h = fnv_reals(h, m->geom_size[0], 3 * ng);
+  h = fnv_reals(h, m->geom_pos[0], 3 * ng);
+  h = fnv_reals(h, m->geom_rot[0], 9 * ng);
+  h = fnv_ints(h, m->geom_vert0, ng);
+  h = fnv_ints(h, m->geom_nvert, ng);
+  h = fnv_ints(h, m->geom_tri0, ng);
+  h = fnv_ints(h, m->geom_ntri, ng);
+  if (m->nvert) h = fnv_reals(h, m->mesh_vert[0], 3 * (size_t)m->nvert);
+  if (m->ntri) h = fnv_ints(h, m->mesh_tri[0], 3 * (size_t)m->ntri);
+  return h;
+}
+
+uint64_t st__post_fingerprint(const stConfig *cfg, const stModel *model, stPostTest test,
+                              int variant, const char *condition, const stPostIndividual *ind,
+                              int nind) {
   uint64_t h = 14695981039346656037ull;
   h = fnv_config(h, cfg);
+  if (model) h = fnv_model(h, model);
   h = fnv_int(h, test);
   h = fnv_int(h, variant);
   h = fnv_str(h, condition);

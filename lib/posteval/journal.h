@@ -10,11 +10,13 @@
 
 #define ST_POST_JOURNAL "posteval.journal"
 
-/* What the results depend on: the configuration's keys away from their defaults, the test,
- * its words and condition, and every individual (run, label, rank, generation, exclusion,
- * genes). A journal of another fingerprint belongs to another test. */
-uint64_t st__post_fingerprint(const stConfig *cfg, stPostTest test, int variant,
-                              const char *condition, const stPostIndividual *ind, int nind);
+/* What the results depend on: the configuration's keys away from their defaults, the robot
+ * model read from robot.urdf and its meshes (every value the importer took; nullable: none),
+ * the test, its words and condition, and every individual (run, label, rank, generation,
+ * exclusion, genes). A journal of another fingerprint belongs to another test. */
+uint64_t st__post_fingerprint(const stConfig *cfg, const stModel *model, stPostTest test,
+                              int variant, const char *condition, const stPostIndividual *ind,
+                              int nind);
 
 /* Writes the done units (done[u] != 0) of `units` atomically to `path`. */
 stStatus st__post_journal_write(const char *path, uint64_t fingerprint, long units,

@@ -356,8 +356,8 @@ static void remove_stale_tmp(const postRun *R) {
 static stStatus open_journal(postRun *R, char *err, size_t errsz) {
   const stPostRunDef *d = R->def;
   snprintf(R->journal, sizeof R->journal, "%s/%s", d->out_dir, ST_POST_JOURNAL);
-  R->fingerprint = st__post_fingerprint(R->cfg, d->test, d->variant, R->condition, R->ind,
-                                        R->nind);
+  R->fingerprint = st__post_fingerprint(R->cfg, R->proto->robot->model, d->test, d->variant,
+                                        R->condition, R->ind, R->nind);
   R->journal_every = d->journal_seconds > 0 ? d->journal_seconds
                      : d->journal_seconds < 0 ? 0.0 : ST_POST_JOURNAL_SECONDS;
   if (access(R->journal, F_OK) != 0) {

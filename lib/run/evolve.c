@@ -26,7 +26,9 @@ static const stNetArch PRIM_ARCH = ST_ARCH_BASE;
 
 typedef struct run {
   const stEvolveDef *def;
-  const stConfig *cfg;
+  const stConfig *cfg; /* &own: def->cfg with --generations as the run's cap key */
+  stConfig own;
+  int cap_changed;     /* resuming under another cap than config.ini's: written anew */
   stProtocol *proto;
   stGa *ga;
   int integrated;     /* the integrated stage (thesis 2.9); else the primitive stages */
@@ -268,6 +270,12 @@ static stStatus same_config(run *R, char *err, size_t errsz) {
     return ST_ERR_PARSE;
   }
   old.run_threads = cur.run_threads = 0;
+  /* the cap only ends the run (no generation before it depends on it): a run continues under
+   * another --generations, and config.ini records the new one (rewrite_config) */
+  int *oc = R->integrated ? &old.ga_integrated_generations : &old.ga_max_generations;
+  int *cc = R->integrated ? &cur.ga_integrated_generations : &cur.ga_max_generations;
+  R->cap_changed = *oc != *cc;
+  *oc = *cc;
   if (memcmp(&old, &cur, sizeof old)) {
     st__errf(err, errsz, "cannot resume: %s differs from this run's configuration (resume needs "
              "the same config and --set options)", R->path[P_CONFIG]);
@@ -497,10 +505,25 @@ static stStatus generation(run *R, int *stop, char *err, size_t errsz) {
 
 /* ---- the run ---- */
 
+/* --generations N is the run's cap key (ga.integrated_generations in the integrated stage,
+ * else ga.max_generations) set to N, so that config.ini records the cap the run was made under;
+ * the cross-key rules see it as they see the key */
+static stStatus apply_generations(stConfig *cfg, int generations, char *err, size_t errsz) {
+  if (generations <= 0) return ST_OK;
+  const int integrated = st_config_run_stages(cfg) == ST_CONFIG_INTEGRATED;
+  *(integrated ? &cfg->ga_integrated_generations : &cfg->ga_max_generations) = generations;
+  char e[1024];
+  stStatus st = st_config_validate(cfg, e, sizeof e);
+  if (st)
+    st__errf(err, errsz, "--generations %d (the run's %s): %s", generations,
+             integrated ? "ga.integrated_generations" : "ga.max_generations", e);
+  return st;
+}
+
 /* which stages (every key acts in them or keeps its default), how many generations, how many
  * threads */
 static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz) {
-  const stConfig *cfg = def->cfg;
+  const stConfig *cfg = R->cfg;
   const unsigned stages = st_config_run_stages(cfg);
   stStatus st = st_config_check_stages(cfg, stages, err, errsz);
   if (st) return st;
@@ -516,8 +539,7 @@ static stStatus plan_run(run *R, const stEvolveDef *def, char *err, size_t errsz
   if (stages & ST_CONFIG_MAIN_PRIM) R->stages[R->nstages++] = ST_STAGE_MAIN;
   if (R->integrated) R->stages[R->nstages++] = ST_STAGE_MAIN; /* dynamic, like main-prim */
   st_integrated_def_from_config(cfg, &R->idef);
-  const int cap = R->integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations;
-  R->limit = def->generations > 0 ? def->generations : cap;
+  R->limit = R->integrated ? cfg->ga_integrated_generations : cfg->ga_max_generations;
   R->threads = st_thread_count(def->threads, cfg);
   stFitnessLayout fl;
   memset(&fl, 0, sizeof fl);
@@ -563,6 +585,13 @@ static stStatus start_population(run *R, const stCheckpoint *ck, int have_ckpt, 
 /* resuming: fitness.csv and best.genome cut back to the checkpoint's generation (the rows of
  * the unfinished generation are redone); the last step before the first generation */
 static stStatus rewind_files(run *R, const stCheckpoint *ck, char *err, size_t errsz) {
+  if (R->cap_changed) { /* config.ini records the cap the run goes on under */
+    stAtomicFile af;
+    stStatus st = st_atomic_open(&af, R->path[P_CONFIG], err, errsz);
+    if (st) return st;
+    st_config_write(af.f, R->cfg);
+    if ((st = st_atomic_commit(&af, err, errsz))) return st;
+  }
   if (truncate(R->path[P_CSV], (off_t)ck->csv_bytes) != 0 ||
       truncate(R->path[P_BEST], (off_t)ck->best_bytes) != 0) {
     st__errf(err, errsz, "cannot resume: %s: %s", R->def->out_dir, strerror(errno));
@@ -607,10 +636,12 @@ stStatus st_evolve_run(const stEvolveDef *def, char *err, size_t errsz) {
   run R;
   memset(&R, 0, sizeof R);
   R.def = def;
-  R.cfg = def->cfg;
+  R.own = *def->cfg;
+  R.cfg = &R.own;
   stStatus st = st_config_validate(def->cfg, err, errsz);
   if (!st) st = st_trial_kinds_check(def->cfg, NULL, err, errsz);
   if (st) return st;
+  if ((st = apply_generations(&R.own, def->generations, err, errsz))) return st;
   if ((st = plan_run(&R, def, err, errsz))) return st;
   if ((st = prepare_dir(&R, err, errsz))) return st;
   stCheckpoint ck;

@@ -9,6 +9,7 @@
 
 #include "core/internal.h"
 #include "selftalk/io.h"
+#include "run/fitnesscsv_parse.h"
 
 #define R stFitnessRow
 #define P ST_FITNESS_PRIMITIVE
@@ -95,11 +96,13 @@ void st_fitness_csv(const stFitnessLayout *l, stFitnessCsv *c) {
 
 /* ---- reading a generation's trials ---- */
 
-/* splits a CSV line in place; returns the number of fields (at most max) */
+/* splits a CSV line in place; returns the number of fields (at most max; max + 1 when there
+ * are more) */
 static int split_csv(char *line, char **field, int max) {
   int n = 0;
   line[strcspn(line, "\r\n")] = 0;
-  for (char *p = line; n < max;) {
+  for (char *p = line; n <= max;) {
+    if (n == max) return max + 1;
     field[n++] = p;
     p = strchr(p, ',');
     if (!p) break;
@@ -108,42 +111,66 @@ static int split_csv(char *line, char **field, int max) {
   return n;
 }
 
-#define MAX_FIELDS 64
+#define MAX_FIELDS 256
 
-/* the generation column and the trials' columns (at most max) of a header */
-static int trial_columns(char *header, int *gcol, int *tcol, int max) {
-  char *f[MAX_FIELDS];
-  const int n = split_csv(header, f, MAX_FIELDS);
+/* the generation column and the trials' columns (at most max) of a header; -1 with the name
+ * of a column given twice */
+static int trial_columns(char *header, int *nf, int *gcol, int *tcol, int max, const char **twice) {
+  char *fld[MAX_FIELDS];
+  *nf = split_csv(header, fld, MAX_FIELDS);
   int nt = 0;
   *gcol = -1;
-  for (int i = 0; i < n; i++) {
+  for (int i = 0; i < *nf && i < MAX_FIELDS; i++) {
+    for (int j = 0; j < i; j++)
+      if (!strcmp(fld[i], fld[j])) return *twice = fld[i], -1;
     char want[32];
     snprintf(want, sizeof want, ST_TRIAL_COLUMN, nt);
-    if (!strcmp(f[i], GENERATION->name)) *gcol = i;
-    if (!strcmp(f[i], want) && nt < max) tcol[nt++] = i;
+    if (!strcmp(fld[i], GENERATION->name)) *gcol = i;
+    if (!strcmp(fld[i], want) && nt < max) tcol[nt++] = i;
   }
   return nt;
 }
 
-stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
-                                  int *n, char *err, size_t errsz) {
-  ST_ASSERT(path && success && n && max >= 0 && max <= MAX_FIELDS);
-  char *text;
-  size_t len;
-  stStatus st = st_text_read(path, ST_FILE_MAX, &text, &len, err, errsz);
-  if (st) return st;
-  int gcol = -1, tcol[MAX_FIELDS], lineno = 0, found = 0;
+/* issue 48: strict. Every row as long as the header, its generation an integer above the
+ * previous row's (a duplicated or unordered generation is refused, not the first taken), every
+ * trial's column 0 or 1 (an empty or 'x' value was read as a success) */
+/* an integer >= 0 as "%d" prints it: no sign, space or leading zero */
+static int canonical_int(const char *v) {
+  if (!v[0] || (v[0] == '0' && v[1])) return 0;
+  for (const char *c = v; *c; c++)
+    if (*c < '0' || *c > '9') return 0;
+  return 1;
+}
+
+typedef struct successesAsk {
+  int generation, max;
+  uint8_t *success;
+  int *n;
+} successesAsk;
+
+static stStatus parse_successes(const char *path, char *text, size_t len, void *ctx, char *err,
+                                size_t errsz) {
+  const successesAsk *a = ctx;
+  const int generation = a->generation, max = a->max;
+  uint8_t *success = a->success;
+  int *n = a->n;
+  stStatus st = ST_OK;
+  int gcol = -1, tcol[ST_INT_MAX_TRIALS], nf_head = 0, lineno = 0, found = 0, prev = -1;
+  char first[32];
+  snprintf(first, sizeof first, ST_TRIAL_COLUMN, 0);
   *n = 0;
   const char *rest = text, *at;
   size_t n_at;
-  while (!found && !st && st__text_line(&rest, text + len, &at, &n_at, NULL)) {
+  while (!st && st__text_line(&rest, text + len, &at, &n_at, NULL)) {
     char *line = text + (at - text);
     line[n_at] = 0; /* our copy: each line a C string (the last one's byte is the final NUL) */
     if (++lineno == 1) {
-      *n = trial_columns(line, &gcol, tcol, max);
-      if (gcol < 0 || *n == 0) {
-        char first[32];
-        snprintf(first, sizeof first, ST_TRIAL_COLUMN, 0);
+      const char *twice = NULL;
+      *n = trial_columns(line, &nf_head, &gcol, tcol, max, &twice);
+      if (twice) {
+        st = ST_ERR_PARSE;
+        st__errf(err, errsz, "%s:1: column '%s' twice (expected each column once)", path, twice);
+      } else if (nf_head > MAX_FIELDS || gcol < 0 || *n == 0) {
         st = ST_ERR_PARSE;
         st__errf(err, errsz, "%s:1: no %s and %s columns (expected the fitness.csv of an "
                  "integrated run)", path, GENERATION->name, first);
@@ -153,21 +180,58 @@ stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *suc
     char *fld[MAX_FIELDS];
     const int nf = split_csv(line, fld, MAX_FIELDS);
     int g;
-    if (nf <= tcol[*n - 1] || nf <= gcol || st__parse_int(fld[gcol], &g)) {
+    if (nf != nf_head) {
       st = ST_ERR_PARSE;
-      st__errf(err, errsz, "%s:%d: %d fields or %s '%s' (expected a row of the header's "
-               "columns)", path, lineno, nf, GENERATION->name, nf > gcol ? fld[gcol] : "");
+      st__errf(err, errsz, "%s:%d: %d fields (expected %d, as the header)", path, lineno, nf,
+               nf_head);
       break;
     }
-    if (g != generation) continue;
-    found = 1;
-    for (int i = 0; i < *n; i++) success[i] = (uint8_t)(strcmp(fld[tcol[i]], "0") != 0);
+    if (!canonical_int(fld[gcol]) || st__parse_int(fld[gcol], &g)) {
+      st = ST_ERR_PARSE;
+      st__errf(err, errsz, "%s:%d: %s '%s' (expected an integer >= 0 as evolve writes it)",
+               path, lineno, GENERATION->name, fld[gcol]);
+      break;
+    }
+    if (g <= prev) {
+      st = ST_ERR_PARSE;
+      st__errf(err, errsz, "%s:%d: %s %d after %d (expected one row per generation, in "
+               "increasing order)", path, lineno, GENERATION->name, g, prev);
+      break;
+    }
+    prev = g;
+    for (int i = 0; i < *n && !st; i++) {
+      const char *v = fld[tcol[i]];
+      if (strcmp(v, "0") && strcmp(v, "1")) {
+        char name[32];
+        snprintf(name, sizeof name, ST_TRIAL_COLUMN, i);
+        st = ST_ERR_PARSE;
+        st__errf(err, errsz, "%s:%d: %s '%s' (expected 0 or 1: the trial failed or succeeded)",
+                 path, lineno, name, v);
+      }
+      if (g == generation) success[i] = (uint8_t)(v[0] == '1');
+    }
+    found |= g == generation;
   }
-  free(text);
   if (!st && !found) {
     st = ST_ERR_PARSE;
     st__errf(err, errsz, "%s: no row for generation %d, the last of best.genome (expected the "
              "run's own fitness.csv)", path, generation);
   }
   return st;
+}
+
+stStatus st_fitness_csv_successes(const char *path, int generation, uint8_t *success, int max,
+                                  int *n, char *err, size_t errsz) {
+  ST_ASSERT(path && success && n && max >= 0 && max <= ST_INT_MAX_TRIALS);
+  successesAsk a = {generation, max, success, n};
+  return st__text_read_parse(path, parse_successes, &a, err, errsz);
+}
+
+stStatus st__fitness_csv_successes_parse(const char *name, const char *text, size_t len,
+                                         int generation, uint8_t *success, int max, int *n,
+                                         char *err, size_t errsz) {
+  ST_ASSERT(name && (text || !len) && success && n && max >= 0 && max <= ST_INT_MAX_TRIALS);
+  successesAsk a = {generation, max, success, n};
+  *n = 0;
+  return st__text_parse(name, text, len, parse_successes, &a, err, errsz);
 }

@@ -17,30 +17,46 @@
 
 /* ---- the interposition check ----------------------------------------------------------- */
 
+/* quickstep's shuffling draws of the probe world in ODE 0.16.2 (12 constraint rows, 20
+ * iterations: the rows are shuffled at iterations 8 and 16, a draw per row but the last) */
+enum { PROBE_QUICKSTEP_DRAWS = 22 };
+
 static pthread_once_t g_rand_once = PTHREAD_ONCE_INIT;
-static int g_rand_interposed;
+static const char *g_rand_why; /* NULL: quickstep draws from the world's own generator */
+static char g_rand_why_buf[512];
 
-/* one quickstep of the probe world (12 constraint rows, 20 iterations): ODE 0.16 shuffles the
- * rows at iterations 8 and 16, so the library's generator must count draws if ODE's calls
- * reach it */
+/* one quickstep of the probe world, drawing from the library's generator (the program's own
+ * generator is not touched): ODE 0.16.2's shuffling must reach it, that many times */
 static void rand_check(void) {
-  st__ode_messages_install();
-  uint32_t saved = st__ode_rand_get();
-  unsigned long before = st__ode_rand_calls();
+  if (!st__ode_rand_bound()) {
+    g_rand_why = "ODE's dRandInt cannot reach the library's per-thread generator in a program "
+                 "linked with the shared library, which exports only the st_ API (link the "
+                 "static library, as the apps do)";
+    return;
+  }
+  const unsigned long before = st__ode_rand_calls();
+  st__ode_rand_begin(0);
+  st__ode_messages_begin();
   st__ode_probe_step(1);
-  g_rand_interposed = st__ode_rand_calls() > before;
-  st__ode_rand_set(saved);
+  st__ode_messages_end();
+  st__ode_rand_end();
+  const unsigned long draws = st__ode_rand_calls() - before;
+  if (!draws)
+    g_rand_why = "ODE's dRandInt does not reach the library's per-thread generator in this "
+                 "build (ODE binds it internally)";
+  else if (draws != PROBE_QUICKSTEP_DRAWS) {
+    snprintf(g_rand_why_buf, sizeof g_rand_why_buf, "ODE's quickstep drew %lu numbers in the "
+             "probe step where ODE 0.16.2 draws %d: the ODE loaded (%s) is not the one the "
+             "per-thread generator was written for", draws, (int)PROBE_QUICKSTEP_DRAWS,
+             dGetConfiguration());
+    g_rand_why = g_rand_why_buf;
+  }
 }
 
-static pthread_once_t g_warn_once = PTHREAD_ONCE_INIT;
-
-static void rand_warn(void) {
-  fprintf(stderr, "libselftalk: warning: ODE's dRandInt is not the library's per-thread "
-                  "generator in this build (ODE binds it internally); dynamic worlds use "
-                  "dynamics.solver = step instead of quickstep\n");
+int st__dyn_rand_interposed(void) {
+  pthread_once(&g_rand_once, rand_check);
+  return g_rand_why == NULL;
 }
-
-int st__dyn_rand_interposed(void) { return g_rand_interposed; }
 
 /* ---- creation ---------------------------------------------------------------------------- */
 
@@ -399,7 +415,17 @@ stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz
   stStatus st = st__dyn_check_def(def, w->robot->dt, &nsub, err, errsz);
   if (st) return st;
   st__ode_init();
-  pthread_once(&g_rand_once, rand_check);
+  st__ode_messages_install();
+  const char *why = st__ode_layout_precision();
+  if (why) return st__errf(err, errsz, "dynamic world: %s", why), ST_ERR_RANGE;
+  if (def->solver == ST_DYN_QUICKSTEP) {
+    pthread_once(&g_rand_once, rand_check);
+    if (g_rand_why)
+      return st__errf(err, errsz, "dynamics.solver: quickstep, but %s (expected step)", g_rand_why),
+             ST_ERR_RANGE;
+  }
+  if (def->lcp == ST_DYN_LCP_SCHUR && (why = st__lcp_unavailable()))
+    return st__errf(err, errsz, "dynamics.lcp: schur, but %s (expected dense)", why), ST_ERR_RANGE;
   dynInternal *d = calloc(1, sizeof *d);
   if (!d) return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
   d->head.backend = &st__dyn_backend;
@@ -410,16 +436,9 @@ stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz
   d->nsub = nsub;
   d->h = w->robot->dt / nsub;
   d->solver = def->solver;
-  if (def->solver == ST_DYN_QUICKSTEP && !g_rand_interposed) {
-    d->solver = ST_DYN_STEP; /* quickstep would share ODE's process-wide generator */
-    pthread_once(&g_warn_once, rand_warn);
-  }
   if (!alloc_arrays(d, w->robot->model) || !create_ode_world(d))
     return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
   if (def->lcp == ST_DYN_LCP_SCHUR) {
-    if (!st__lcp_interposed())
-      return st__errf(err, errsz, "dynamics.lcp: schur, but ODE's calls of dxSolveLCP do not "
-                      "reach the library's in this build (expected dense)"), ST_ERR_RANGE;
     if (!(d->lcp = st__lcp_create()))
       return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
     /* room in ODE's step arena for the check mode's second solve (lib/world/ode_lcp.h): the

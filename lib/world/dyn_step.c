@@ -51,17 +51,19 @@ static void speculative_stops(dynInternal *d, double vmax) {
  * warnings during it. Returns 0 when ODE ran out of memory. */
 static int ode_step(dynInternal *d, unsigned long *messages) {
   int ok;
+  st__ode_messages_begin(); /* ODE's warnings of this world's step are counted, not printed */
   const unsigned long msg0 = st__ode_messages();
   if (d->solver == ST_DYN_QUICKSTEP) {
-    st__ode_rand_set(d->rand_state);
+    st__ode_rand_begin(d->rand_state);
     ok = dWorldQuickStep(d->world, d->h);
-    d->rand_state = st__ode_rand_get();
+    d->rand_state = st__ode_rand_end();
   } else {
     if (d->lcp) st__lcp_begin(d->lcp);
     ok = dWorldStep(d->world, d->h);
     if (d->lcp) st__lcp_end();
   }
   *messages = st__ode_messages() - msg0;
+  st__ode_messages_end();
   dJointGroupEmpty(d->cgroup);
   d->messages += (long)*messages;
   return ok;

@@ -88,6 +88,11 @@ static ST_THREAD_LOCAL long g_check_n, g_check_warned;
 
 static void find_ode(void) { *(void **)&g_ode = dlsym(RTLD_NEXT, ODE_SOLVE_LCP); }
 
+static int ode_lcp_found(void) {
+  pthread_once(&g_ode_once, find_ode);
+  return g_ode != NULL;
+}
+
 static lcpFn ode_lcp(void) {
   pthread_once(&g_ode_once, find_ode);
   if (!g_ode) { /* the interposer is only reached from libode, which defines it */
@@ -505,13 +510,45 @@ static void solve_checked(stLcp *s, void *arena, unsigned n, double *A, double *
   if (!(dx / xmax <= g_check_max)) g_check_max = dx / xmax;
 }
 
-/* ODE's dxSolveLCP, as libode.so calls it */
+/* what the probe step's LCP looked like (check_interposed) */
+typedef struct lcpProbe {
+  int on, calls;
+  unsigned n, nub;
+  int layout_ok;
+} lcpProbe;
+static ST_THREAD_LOCAL lcpProbe g_probe;
+
+/* the probe's problem as ODE 0.16.2's step.cpp and lcp.h lay it out: two powered hinges give 12
+ * rows, each hinge's 5 unbounded rows (lo -inf, hi +inf) followed by its motor row bounded by its
+ * dParamFMax (+-1), nub 0 (the solver finds the unbounded rows itself), no friction rows
+ * (findex -1), no outer w, lh as (lo, hi) pairs and A's rows dPAD(12) apart with a positive
+ * diagonal */
+static int probe_layout(unsigned n, const double *A, const double *bx, const double *w,
+                        unsigned nub, const double *lh, const int *findex) {
+  if (n != 12 || nub != 0 || w || !A || !bx || !lh) return 0;
+  for (unsigned i = 0; i < n; i++) {
+    const double lo = lh[2 * i], hi = lh[2 * i + 1];
+    if (findex && findex[i] != -1) return 0;
+    if (!(A[(size_t)i * pad(n) + i] > 0.0) || !isfinite(bx[2 * i])) return 0;
+    if (i % 6 == 5 ? !(lo == -1.0 && hi == 1.0) : !(isinf(lo) && lo < 0 && isinf(hi) && hi > 0))
+      return 0;
+  }
+  return 1;
+}
+
+/* ODE's dxSolveLCP, as libode.so calls it: visible, so that the program exports it to libode
+ * (the library is compiled with -fvisibility=hidden; the shared library keeps it local) */
 void st__lcp_entry(void *arena, unsigned n, double *A, double *bx, double *w, unsigned nub,
-                   double *lh, int *findex) __asm__(ODE_SOLVE_LCP);
+                   double *lh, int *findex) __asm__(ODE_SOLVE_LCP)
+    __attribute__((visibility("default")));
 
 void st__lcp_entry(void *arena, unsigned n, double *A, double *bx, double *w, unsigned nub,
                    double *lh, int *findex) {
   g_entries++;
+  if (g_probe.on && !g_probe.calls++) {
+    g_probe.n = n, g_probe.nub = nub;
+    g_probe.layout_ok = probe_layout(n, A, bx, w, nub, lh, findex);
+  }
   stLcp *s = g_cur;
   if (s) {
     s->st.calls++;
@@ -528,15 +565,43 @@ void st__lcp_entry(void *arena, unsigned n, double *A, double *bx, double *w, un
 /* ---- the interposition check -------------------------------------------------------------- */
 
 static pthread_once_t g_check_once = PTHREAD_ONCE_INIT;
-static int g_interposed;
+static const char *g_why; /* NULL: the reduction can act */
+static char g_why_buf[512];
 
 static void check_interposed(void) {
+  lcpFn found;
+  *(void **)&found = dlsym(RTLD_DEFAULT, ODE_SOLVE_LCP);
+  if (found != (lcpFn)st__lcp_entry) { /* the shared library: ODE's own is the program's */
+    g_why = "ODE's calls of dxSolveLCP cannot reach the library's in a program linked with the "
+            "shared library, which exports only the st_ API (link the static library, as the "
+            "apps do)";
+    return;
+  }
+  if (!ode_lcp_found()) {
+    g_why = "ODE's own dxSolveLCP (ODE 0.16.2's C++ name) is not in the ODE loaded";
+    return;
+  }
   const unsigned long before = g_entries;
+  memset(&g_probe, 0, sizeof g_probe);
+  g_probe.on = 1;
   st__ode_probe_step(0);
-  g_interposed = g_entries > before;
+  g_probe.on = 0;
+  if (g_entries == before) {
+    g_why = "ODE's calls of dxSolveLCP do not reach the library's in this build (ODE binds "
+            "them internally)";
+    return;
+  }
+  if (g_probe.calls != 1 || !g_probe.layout_ok) {
+    snprintf(g_why_buf, sizeof g_why_buf, "the probe step's LCP (%d calls, the first of %u rows, "
+             "nub %u) is not laid out as ODE 0.16.2's (1 call of 12 rows, nub 0, the two motor "
+             "rows bounded by their dParamFMax, the others unbounded): the ODE loaded (%s) is not "
+             "the one the reduction was written for", g_probe.calls, g_probe.n, g_probe.nub,
+             dGetConfiguration());
+    g_why = g_why_buf;
+  }
 }
 
-int st__lcp_interposed(void) {
+const char *st__lcp_unavailable(void) {
   pthread_once(&g_check_once, check_interposed);
-  return g_interposed;
+  return g_why;
 }

@@ -30,9 +30,12 @@ void st__lcp_stats_reset(stLcp *s);
 void st__lcp_begin(stLcp *s);
 void st__lcp_end(void);
 
-/* 1 when ODE's calls of dxSolveLCP reach the library's definition (checked once per process
- * with a one-hinge world); else dynamics.lcp = schur cannot act and is refused. */
-int st__lcp_interposed(void);
+/* NULL when ODE's calls of dxSolveLCP reach the library's definition and lay the problem out as
+ * ODE 0.16.2 does (checked once per process with a probe step of two powered hinges); else why
+ * not, and dynamics.lcp = schur cannot act and is refused: a program linked with the shared
+ * library (which exports only the st_ API), an ODE that binds the call internally or another
+ * version's layout. */
+const char *st__lcp_unavailable(void);
 
 /* Check mode (tests), on the calling thread: every LCP that st__lcp_begin routes is solved
  * by ODE's own function as well, on a copy, and the step goes on with ODE's solution;

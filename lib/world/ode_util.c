@@ -4,6 +4,7 @@
 
 #include <ode/ode.h>
 #include <pthread.h>
+#include <stdio.h>
 
 static pthread_once_t g_once = PTHREAD_ONCE_INIT;
 
@@ -12,6 +13,27 @@ static void init_once(void) { dInitODE2(0); }
 void st__ode_init(void) {
   pthread_once(&g_once, init_once);
   dAllocateODEDataForThread(dAllocateMaskAll);
+}
+
+/* the headers the library was compiled against say dReal is double; a libode of another
+ * precision would read every array the library hands it wrongly */
+static pthread_once_t g_precision_once = PTHREAD_ONCE_INIT;
+static const char *g_precision_why;
+static char g_precision_buf[400];
+
+static void check_precision(void) {
+  st__ode_init();
+  if (!dCheckConfiguration("ODE_double_precision")) {
+    snprintf(g_precision_buf, sizeof g_precision_buf, "the ODE loaded is not built in double "
+             "precision (its configuration: %s), and libselftalk was compiled against ODE "
+             "%s's double-precision headers", dGetConfiguration(), dODE_VERSION);
+    g_precision_why = g_precision_buf;
+  }
+}
+
+const char *st__ode_layout_precision(void) {
+  pthread_once(&g_precision_once, check_precision);
+  return g_precision_why;
 }
 
 void st__ode_probe_step(int quickstep) {

@@ -11,6 +11,10 @@
  *                          that acts on a running run (remount, kill, stop) has a window that
  *                          does not shrink on a fast machine; while it sleeps no file is open
  *                          and no temporary file waits
+ *   ST_FAULT_HOLD=FILE     after each rename onto a file named "checkpoint", wait while FILE
+ *                          exists (at most an hour): a test holds a run right after a
+ *                          checkpoint, acts on it (kill, stop), then removes FILE; an event,
+ *                          not a deadline, so a busy machine cannot make it race
  * Not part of the library; built by the Makefile next to the test binary. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
@@ -19,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 /* 1 when this call is the N-th or a later one of the counter's */
 static int trips(const char *var, long *count) {
@@ -48,6 +53,12 @@ int rename(const char *from, const char *to) {
     while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
     }
   }
+  const char *hold = getenv("ST_FAULT_HOLD"), *base = strrchr(to, '/');
+  if (rc == 0 && hold && *hold && !strcmp(base ? base + 1 : to, "checkpoint"))
+    for (long i = 0; i < 360000 && access(hold, F_OK) == 0; i++) {
+      struct timespec ts = {0, 10000000L}; /* 10 ms */
+      nanosleep(&ts, NULL);
+    }
   errno = e;
   return rc;
 }
