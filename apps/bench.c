@@ -78,7 +78,8 @@ static double bench_trial(const stProtocol *p, stWorkspace *ws, const stNetParam
  * points by pair kind (stDynInfo) */
 typedef struct dynStats {
   long substeps, ode_substeps, unstable, redos, aredos, hinge_substeps;
-  long lcps, lcp_reduced, lcp_rows, lcp_unbounded, lcp_orders; /* dynamics.lcp = schur */
+  long lcps, lcp_reduced, lcp_rows, lcp_unbounded, lcp_orders; /* dynamics.lcp = schur ... */
+  long lcp_direct, lcp_fallbacks;                              /* ... warm */
   long points[ST_DYN_PAIR_COUNT];
 } dynStats;
 
@@ -96,6 +97,8 @@ static void stats_add(dynStats *st, const stWorld *w) {
   st->lcp_rows += in.lcp_reduced_rows;
   st->lcp_unbounded += in.lcp_unbounded_rows;
   st->lcp_orders += in.lcp_orderings;
+  st->lcp_direct += in.lcp_direct;
+  st->lcp_fallbacks += in.lcp_fallbacks;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) st->points[k] += in.contact_points[k];
 }
 
@@ -112,6 +115,8 @@ static void stats_merge(dynStats *to, const dynStats *from) {
   to->lcp_rows += from->lcp_rows;
   to->lcp_unbounded += from->lcp_unbounded;
   to->lcp_orders += from->lcp_orders;
+  to->lcp_direct += from->lcp_direct;
+  to->lcp_fallbacks += from->lcp_fallbacks;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) to->points[k] += from->points[k];
 }
 
@@ -199,9 +204,11 @@ static void print_rows(const char *name, const dynStats *st) {
   if (st->lcps) { /* dynamics.lcp = schur: what the reduction took */
     const double red = st->lcp_reduced > 0 ? (double)st->lcp_reduced : 1.0;
     printf("lcp scenario=%s reduced=%.0f%% rows_per_reduced=%.1f unbounded=%.1f bounded=%.1f "
-           "orders_computed=%.1f%%\n", name, 100.0 * (double)st->lcp_reduced / (double)st->lcps,
-           (double)st->lcp_rows / red, (double)st->lcp_unbounded / red,
-           (double)(st->lcp_rows - st->lcp_unbounded) / red, 100.0 * (double)st->lcp_orders / red);
+           "orders_computed=%.1f%% direct=%.1f%% fallback=%.1f%%\n", name,
+           100.0 * (double)st->lcp_reduced / (double)st->lcps, (double)st->lcp_rows / red,
+           (double)st->lcp_unbounded / red, (double)(st->lcp_rows - st->lcp_unbounded) / red,
+           100.0 * (double)st->lcp_orders / red, 100.0 * (double)st->lcp_direct / red,
+           100.0 * (double)st->lcp_fallbacks / red);
   }
 }
 

@@ -416,12 +416,14 @@ stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz
   }
   if (!alloc_arrays(d, w->robot->model) || !create_ode_world(d))
     return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
-  if (def->lcp == ST_DYN_LCP_SCHUR) {
+  if (def->lcp != ST_DYN_LCP_DENSE) {
     if (!st__lcp_interposed())
-      return st__errf(err, errsz, "dynamics.lcp: schur, but ODE's calls of dxSolveLCP do not "
-                      "reach the library's in this build (expected dense)"), ST_ERR_RANGE;
+      return st__errf(err, errsz, "dynamics.lcp: %s, but ODE's calls of dxSolveLCP do not reach "
+                      "the library's in this build (expected dense)",
+                      st_config_enum_name("dynamics", "lcp", def->lcp)), ST_ERR_RANGE;
     if (!(d->lcp = st__lcp_create()))
       return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
+    st__lcp_set_mode(d->lcp, def->lcp);
     /* room in ODE's step arena for the check mode's second solve (lib/world/ode_lcp.h): the
      * steps' own need is far below 1 MB */
     const dWorldStepReserveInfo reserve = {sizeof reserve, 2.0f, 1u << 20};
