@@ -97,7 +97,7 @@ struct stLcp {
   int bo_next;
   const stBlkOrder *bord;               /* this problem's: one of bo's */
   uint64_t *ymask;                      /* per bounded row: Y's blocks that may be nonzero */
-  double *dinv, *F, *xd, *lo2, *hi2, *rhs, *lh0;
+  double *dinv, *F, *xd, *lo2, *hi2, *rhs, *lh0, *wcol, *dinvc;
   unsigned *cl;
   unsigned char *rs, *kind, *rank;      /* warm: a bounded row's status, kind, rank in kind */
   int p1_ok;                            /* warm: phase 1 settled (hi2: phase 2's bounds) */
@@ -137,7 +137,7 @@ static void free_scratch(stLcp *s) {
   free(s->ycnt), free(s->findex_b), free(s->M), free(s->Lv), free(s->Y), free(s->W);
   free(s->z), free(s->v), free(s->S), free(s->bx_b), free(s->lh_b);
   free(s->ymask), free(s->dinv), free(s->F), free(s->xd), free(s->lo2), free(s->lh0), free(s->f0);
-  free(s->Db), free(s->Lb), free(s->Tb);
+  free(s->Db), free(s->Lb), free(s->Tb), free(s->wcol), free(s->dinvc);
   free(s->hi2), free(s->rhs), free(s->cl), free(s->rs), free(s->kind), free(s->rank);
 }
 
@@ -207,12 +207,13 @@ static int reserve(stLcp *s, unsigned n) {
   s->Db = malloc((size_t)BLK_MAX * BB * sizeof *s->Db);
   s->Lb = malloc((size_t)BLK_MAX * (BLK_MAX - 1) / 2 * BB * sizeof *s->Lb);
   s->Tb = malloc((size_t)BLK_MAX * BB * sizeof *s->Tb);
+  s->wcol = malloc(N * sizeof *s->wcol), s->dinvc = malloc(N * sizeof *s->dinvc);
   s->hi2 = malloc(N * sizeof *s->hi2), s->rhs = malloc(N * sizeof *s->rhs);
   s->cl = malloc(N * sizeof *s->cl), s->rs = malloc(N), s->kind = malloc(N);
   s->rank = malloc(N);
   if (!(s->perm && s->U && s->B && s->posb && s->posu && s->ycnt && s->ynz && s->findex_b &&
         s->M && s->Lv && s->Y && s->W && s->z && s->v && s->S && s->bx_b && s->lh_b &&
-        s->ymask && s->dinv && s->F && s->xd && s->lo2 && s->lh0 && s->f0 && s->Db && s->Lb && s->Tb && s->hi2 && s->rhs && s->cl &&
+        s->ymask && s->dinv && s->F && s->xd && s->lo2 && s->lh0 && s->f0 && s->Db && s->Lb && s->Tb && s->wcol && s->dinvc && s->hi2 && s->rhs && s->cl &&
         s->rs && s->kind && s->rank))
     return 0;
   s->cap_n = n;
@@ -900,7 +901,7 @@ static int bpp(stLcp *s, unsigned nb, const unsigned *rows, unsigned nr, const d
                const double *hi) {
   const unsigned sb = pad(nb);
   const double *S = s->S;
-  double *x = s->xd, *F = s->F, *rhs = s->rhs;
+  double *x = s->xd, *F = s->F, *rhs = s->rhs, *dinvc = s->dinvc;
   unsigned char *rs = s->rs;
   unsigned *cl = s->cl;
   unsigned best = nr + 1;
@@ -915,45 +916,42 @@ static int bpp(stLcp *s, unsigned nb, const unsigned *rows, unsigned nr, const d
       else x[i] = rs[i] == RS_LO ? lo[i] : hi[i];
     }
     /* S_CC x_C = b_C - S_CN x_N: LDL^T of S_CC (dense, positive definite) */
+    unsigned nn = 0; /* the rows at a nonzero bound, after the clamped ones in cl */
+    for (unsigned q = 0; q < nr; q++)
+      if (rs[rows[q]] != RS_C && x[rows[q]] != 0.0) cl[nc + nn++] = rows[q];
     for (unsigned a = 0; a < nc; a++) {
       const double *Sa = S + (size_t)cl[a] * sb;
       double acc = s->bx_b[2 * cl[a]];
-      for (unsigned q = 0; q < nr; q++) {
-        const unsigned j = rows[q];
-        if (rs[j] != RS_C && x[j] != 0.0) acc -= Sa[j] * x[j];
-      }
+      for (unsigned q = nc; q < nc + nn; q++) acc -= Sa[cl[q]] * x[cl[q]];
       rhs[a] = acc;
       double *Fa = F + (size_t)a * nc;
       for (unsigned b = 0; b <= a; b++) Fa[b] = Sa[cl[b]];
     }
-    for (unsigned a = 0; a < nc; a++) { /* row by row: Fa[b] first holds L_ab D_b */
-      double *Fa = F + (size_t)a * nc;
-      for (unsigned b = 0; b < a; b++) {
-        const double *Fb = F + (size_t)b * nc;
-        double acc = Fa[b];
-        for (unsigned c = 0; c < b; c++) acc -= Fa[c] * Fb[c];
-        Fa[b] = acc;
-      }
-      double d = Fa[a];
-      for (unsigned b = 0; b < a; b++) {
-        const double l = Fa[b] / F[(size_t)b * nc + b];
-        d -= l * Fa[b];
-        Fa[b] = l;
-      }
+    /* right-looking, a column at a time: the updates run along rows (no chain of sums) */
+    double *col = s->wcol;
+    for (unsigned k = 0; k < nc; k++) {
+      const double d = F[(size_t)k * nc + k];
       if (!(d > 0.0) || !isfinite(d)) return 0;
-      Fa[a] = d;
+      const double inv = 1.0 / d;
+      dinvc[k] = inv;
+      for (unsigned i = k + 1; i < nc; i++) col[i] = F[(size_t)i * nc + k];
+      for (unsigned i = k + 1; i < nc; i++) {
+        double *Fi = F + (size_t)i * nc;
+        const double l = col[i] * inv;
+        for (unsigned j = k + 1; j <= i; j++) Fi[j] -= l * col[j];
+        Fi[k] = l;
+      }
     }
-    for (unsigned a = 0; a < nc; a++) {
+    for (unsigned a = 0; a < nc; a++) { /* L y = rhs, row by row */
       const double *Fa = F + (size_t)a * nc;
       double acc = rhs[a];
       for (unsigned b = 0; b < a; b++) acc -= Fa[b] * rhs[b];
       rhs[a] = acc;
     }
-    for (unsigned a = 0; a < nc; a++) rhs[a] /= F[(size_t)a * nc + a];
-    for (unsigned a = nc; a-- > 0;) {
-      double acc = rhs[a];
-      for (unsigned b = a + 1; b < nc; b++) acc -= F[(size_t)b * nc + a] * rhs[b];
-      rhs[a] = acc;
+    for (unsigned a = 0; a < nc; a++) rhs[a] *= dinvc[a];
+    for (unsigned b = nc; b-- > 1;) { /* L^T x = y, a finished x_b out of the rows above */
+      const double *Fb = F + (size_t)b * nc, xb = rhs[b];
+      for (unsigned a = 0; a < b; a++) rhs[a] -= Fb[a] * xb;
     }
     for (unsigned a = 0; a < nc; a++) x[cl[a]] = rhs[a];
     /* the check: each failing row's new side in cl (a list, as the statuses stay for now) */
