@@ -641,9 +641,10 @@ static void blk_load_t(double *dst, const double *A, unsigned skip, unsigned r, 
   }
 }
 
-/* D := L D L^T of a 5 x 5 block in place (lower triangle read; L below the diagonal, D on it);
- * 0 on a pivot that is not positive */
-static int ldl5(double *D) {
+/* D := L D L^T of a 5 x 5 block in place (lower triangle read; L below the diagonal, D on it),
+ * 1 / D into inv (multiplied by, not divided: a division's latency is the chain's); 0 on a
+ * pivot that is not positive */
+static int ldl5(double *D, double *inv) {
   for (unsigned a = 0; a < B5; a++) {
     double *Da = D + B5 * a;
     for (unsigned b = 0; b < a; b++) { /* Da[b] := L_ab d_b, from the rows above */
@@ -654,12 +655,13 @@ static int ldl5(double *D) {
     }
     double d = Da[a];
     for (unsigned b = 0; b < a; b++) {
-      const double l = Da[b] / D[B5 * b + b];
+      const double l = Da[b] * inv[b];
       d -= l * Da[b];
       Da[b] = l;
     }
     if (!(d > 0.0) || !isfinite(d)) return 0;
     Da[a] = d;
+    inv[a] = 1.0 / d;
   }
   return 1;
 }
@@ -694,8 +696,7 @@ static int blk_factor(stLcp *s, const double *A, unsigned skip) {
   }
   for (unsigned k = 0; k < ng; k++) {
     double *Dk = Db + BB * k;
-    if (!ldl5(Dk)) return 0;
-    for (unsigned a = 0; a < B5; a++) s->dinv[B5 * k + a] = 1.0 / Dk[B5 * a + a];
+    if (!ldl5(Dk, s->dinv + B5 * k)) return 0;
     const unsigned e0 = o->lbeg[k], e1 = o->lbeg[k + 1];
     for (unsigned e = e0; e < e1; e++) { /* T = A_ik L_kk^-T = L_ik D_k, then L_ik = T D_k^-1 */
       double *Te = T + BB * (e - e0), *Le = Lb + BB * e;
