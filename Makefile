@@ -215,7 +215,8 @@ $(FAULT_SHIM): tests/faults/fault_shim.c | $(BUILD)/obj
 
 # make compare: libselftalk's dynamic world against MuJoCo (Debian's libmujoco-dev, 2.2.2) on
 # the same model imported from the same URDF, free, press and held interleaved in one run
-# (docs/PROTOCOL.md, "Against MuJoCo"); the variant COMPARE_SET, 10 rounds unless COMPARE_ARGS
+# (docs/PROTOCOL.md, "Speed"; docs/notebook/speed.md, "Against MuJoCo"); the variant
+# COMPARE_SET, 10 rounds unless COMPARE_ARGS
 COMPARE := $(BUILD)/compare
 COMPARE_SET ?= dynamics.lcp=warm
 COMPARE_ARGS ?=

@@ -25,8 +25,10 @@
  * baseline's configuration, measured interleaved (so --set KEY=on --baseline KEY=off is a
  * same-run before / after of a key). --rows prints, per scenario, what ODE's step solved: the
  * share of sub-steps with the robot in ODE, the contact points per such sub-step by pair kind
- * and the LCP rows (6 per hinge in ODE's step + 3 per contact point), and the sub-steps redone
- * by dynamics.motor_active_set and by dynamics.adaptive_joints. --only runs one scenario (for
+ * and the LCP rows (6 per hinge in ODE's step + 3 per contact point), the sub-steps redone
+ * by dynamics.motor_active_set and by dynamics.adaptive_joints, and with dynamics.lcp other
+ * than dense what its reduction took (dynamics.lcp = warm: the shares of the reduced LCPs
+ * solved directly and left to ODE's Dantzig). --only runs one scenario (for
  * profiling). What is timed is what is named: the control steps alone (in the random trials,
  * the episode from its first step on: sensing, the network, the world), each thread's CPU time
  * and wall time summed over the trials; creating the worlds and resetting them before each

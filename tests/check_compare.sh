@@ -3,7 +3,8 @@
 # of the URDF passes the model checks (frames to 1e-6 m, masses), a 1-round, 3-step run prints
 # the three scenarios and the closing line in its documented form, the scene it writes loads
 # again in MuJoCo, and a bad argument is refused. The speed figures themselves are make
-# compare's (docs/PROTOCOL.md, "Against MuJoCo"), not checked here.
+# compare's (docs/PROTOCOL.md, "Speed"; docs/notebook/speed.md, "Against MuJoCo"), not checked
+# here.
 set -uo pipefail
 BUILD=${BUILD:-build}
 CHECK=check_compare

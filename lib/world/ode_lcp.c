@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT
  * dynamics.lcp = schur: ODE's LCP with the unbounded rows eliminated by a sparse
- * factorisation, ODE's own Dantzig solver on what is left.
+ * factorisation, ODE's own Dantzig solver on what is left; block: the same elimination by the
+ * hinges' 5 x 5 blocks; warm: block, and what is left solved directly from the last sub-step's
+ * active set, checked, ODE's Dantzig when the check fails (each section below says why).
  *
  * Why. dWorldStep's LCP (A x = b + w, lo <= x <= hi) has about 65 unbounded rows (the hinges'
  * constraint rows) and 25-40 bounded ones (motors, stops, contacts). ODE's Dantzig solver

@@ -634,7 +634,12 @@ int main(int argc, char **argv) {
     for (int i = 0; i < 4; i++) snprintf(path, sizeof path, "%s/%s", tmp, files[i]), unlink(path);
     rmdir(tmp);
   }
-  if (check_only) return 0;
+  if (check_only) {
+    mj_deleteModel(su.table);
+    mj_deleteModel(su.notable);
+    st_protocol_destroy(su.p);
+    return 0;
+  }
 
   trialPlan (*plans)[ST_NPOSTURE] = calloc(NSCEN, sizeof *plans);
   make_plans(&su, steps, plans);
