@@ -8,6 +8,9 @@
 #                   abort when broken; a debug build is `make OPT="-O0 -g" ASSERTS=1`
 #   make valgrind   unit tests under valgrind memcheck
 #   make bench      benchmarks
+#   make compare    the dynamic world against MuJoCo 2.2.2 (Debian's libmujoco-dev) on the same
+#                   model, same run (tools/compare/compare.c; COMPARE_SET, COMPARE_ARGS); a
+#                   benchmark, not part of make test (its smoke test is: tests/check_compare.sh)
 #   make replicate [PRESET=small] [RUNS=N] [OUT=DIR]   the whole study, resumable, priced
 #                   first (tools/replicate.mk; README.md, "Replicating the study")
 #   make fuzz       fuzz targets (clang's libFuzzer, ASan + UBSan) and seed corpora in build-fuzz/;
@@ -101,13 +104,14 @@ HEADERS := $(wildcard include/selftalk/*.h) $(wildcard lib/*/*.h lib/*/*/*.h)
 
 DEB_PACKAGES := build-essential pkg-config libode-dev libccd-dev libeigen3-dev liburdfdom-dev \
   libassimp-dev libtinyxml-dev libcunit1-dev libinih-dev python3 python3-matplotlib valgrind \
-  libopenmpi-dev openmpi-bin libjs-three chromium python3-pil ffmpeg
+  libopenmpi-dev openmpi-bin libjs-three chromium python3-pil ffmpeg libmujoco-dev
 # Debian's interpreter, which python3-matplotlib serves (another python3 may come first in PATH)
 PYTHON := /usr/bin/python3
 RUN_CONFIG := configs/simple_prim.cfg
 RUN_DIR := runs/simple_prim-s1
 
 .PHONY: FORCE all deps run run-only test test-only asan asan-only valgrind valgrind-only bench \
+  compare compare-only \
   replicate replicate-only \
   bench-only golden-update install uninstall clean fuzz fuzz-run
 .DELETE_ON_ERROR:
@@ -197,7 +201,7 @@ $(TEST_BIN): tests/main.c $(TEST_SRC) tests/test_util.h $(BUILD)/suites.inc $(FU
 	  $(FULL_A) $(LIBS_TEST) $(LIBS_SIM) $(LIBS_CORE)
 
 # the targets that set up first: deps, then a fresh make that computes the flags (pkg_flags)
-test run asan valgrind bench replicate: deps
+test run asan valgrind bench replicate compare: deps
 	@$(MAKE) --no-print-directory $@-only
 
 # every step's files under OUT; a killed replication continues where it stopped. Its cost
@@ -226,7 +230,20 @@ $(BUILD)/ode_host_shared: tests/link/ode_host.c $(FULL_SO) $(HEADERS) | $(BUILD)
 $(BUILD)/ode_host_static: tests/link/ode_host.c $(FULL_A) $(HEADERS) | $(BUILD)/obj
 	$(CC) -DWITH_SELFTALK $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
 
-test-only: all $(TEST_BIN) $(FAULT_SHIM) $(BUILD)/page_check $(LINK_HOSTS)
+# make compare: libselftalk's dynamic world against MuJoCo (Debian's libmujoco-dev, 2.2.2) on
+# the same model imported from the same URDF, free, press and held interleaved in one run
+# (docs/PROTOCOL.md, "Speed"; docs/notebook/speed.md, "Against MuJoCo"); the variant
+# COMPARE_SET, 10 rounds unless COMPARE_ARGS
+COMPARE := $(BUILD)/compare
+COMPARE_SET ?= dynamics.lcp=warm
+COMPARE_ARGS ?=
+$(COMPARE): tools/compare/compare.c $(FULL_A) $(HEADERS)
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_A) -lmujoco $(LIBS_SIM) $(LIBS_CORE)
+
+compare-only: all $(COMPARE)
+	./$(COMPARE) --set '$(COMPARE_SET)' $(COMPARE_ARGS)
+
+test-only: all $(TEST_BIN) $(FAULT_SHIM) $(BUILD)/page_check $(LINK_HOSTS) $(COMPARE)
 	+@BUILD=$(BUILD) APPDIR=$(APPDIR) bash tests/run_all.sh
 
 asan-only:

@@ -25,9 +25,14 @@
  * baseline's configuration, measured interleaved (so --set KEY=on --baseline KEY=off is a
  * same-run before / after of a key). --rows prints, per scenario, what ODE's step solved: the
  * share of sub-steps with the robot in ODE, the contact points per such sub-step by pair kind
- * and the LCP rows (6 per hinge in ODE's step + 3 per contact point), and the sub-steps redone
- * by dynamics.motor_active_set and by dynamics.adaptive_joints. --only runs one scenario (for
- * profiling). */
+ * and the LCP rows (6 per hinge in ODE's step + 3 per contact point), the sub-steps redone
+ * by dynamics.motor_active_set and by dynamics.adaptive_joints, and with dynamics.lcp other
+ * than dense what its reduction took (dynamics.lcp = warm: the shares of the reduced LCPs
+ * solved directly and left to ODE's Dantzig). --only runs one scenario (for
+ * profiling). What is timed is what is named: the control steps alone (in the random trials,
+ * the episode from its first step on: sensing, the network, the world), each thread's CPU time
+ * and wall time summed over the trials; creating the worlds and resetting them before each
+ * trial are timed apart and printed on their own line (setup=...), not in the rates. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,9 +48,33 @@ static const char *prog = "bench";
 
 static double now(void) { return app_seconds(APP_WALL); }
 
-/* CPU seconds of the whole process: per-core rates that another load on the machine barely
+/* CPU seconds of the calling thread: per-core rates that another load on the machine barely
  * moves (wall-clock rates are printed beside them) */
-static double cpu_now(void) { return app_seconds(APP_PROCESS_CPU); }
+static double cpu_now(void) { return app_seconds(APP_THREAD_CPU); }
+
+/* what a thread spent: on the control steps, and apart from them on creating worlds and on
+ * resetting them before each trial (CPU and wall seconds) */
+typedef struct spent {
+  double step_cpu, step_wall, create_cpu, reset_cpu;
+  long steps, creates, resets;
+} spent;
+
+static void spent_merge(spent *to, const spent *from) {
+  to->step_cpu += from->step_cpu, to->step_wall += from->step_wall;
+  to->create_cpu += from->create_cpu, to->reset_cpu += from->reset_cpu;
+  to->steps += from->steps, to->creates += from->creates, to->resets += from->resets;
+}
+
+/* a world created on the calling thread, the time counted as creation */
+static stWorld *create_timed(const stProtocol *p, const stDynDef *def, spent *sp, char *e,
+                             size_t esz) {
+  const double c0 = cpu_now();
+  stWorld *w = NULL;
+  if (st_world_create_dynamic(p->robot, &p->scene, def, &w, e, esz) != ST_OK) w = NULL;
+  sp->create_cpu += cpu_now() - c0;
+  sp->creates++;
+  return w;
+}
 
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
@@ -53,32 +82,54 @@ static int cmp_double(const void *a, const void *b) {
 }
 
 /* the bench's scorer: a checksum of every step's state, so nothing is optimised away; the
- * episode runs its full length unless the simulation diverges */
+ * episode runs its full length unless the simulation diverges. begin (after the episode's reset)
+ * marks where the steps start. */
+typedef struct benchScore {
+  double sum, cpu0, wall0;
+} benchScore;
+
+static void sum_begin(void *self) {
+  benchScore *b = self;
+  b->cpu0 = cpu_now();
+  b->wall0 = now();
+}
+
 static int sum_step(void *self, stTraceStep *ts) {
-  *(double *)self += ts->q->d_r + ts->world->contacts.arm_table + ts->world->obj[2];
+  ((benchScore *)self)->sum += ts->q->d_r + ts->world->contacts.arm_table + ts->world->obj[2];
   return ts->unstable ? ST_END_FAILURE : -1;
 }
 
 /* one episode of the library's loop on the workspace's world for its mode, the network np
- * hearing the word of primitive prim; returns the checksum */
+ * hearing the word of primitive prim; returns the checksum. With sp: the reset (and the
+ * controller's) counted apart from the steps. */
 static double bench_trial(const stProtocol *p, stWorkspace *ws, const stNetParams *np,
-                          const stEpisodeSpec *e, int prim) {
-  double sum = 0;
+                          const stEpisodeSpec *e, int prim, spent *sp) {
+  benchScore b = {0, 0, 0};
   stNetController nc;
   const stController ctl = st_net_controller(&nc, np, NULL, 0);
   const stWords words = {ST_WORDS_FIXED, prim, p->cfg.network_linguistic_input, 0.0};
-  const stScorer sc = {NULL, sum_step, NULL, &sum};
+  const stScorer sc = {sum_begin, sum_step, NULL, &b};
   char err[256];
+  const double c0 = cpu_now();
   if (st_episode_run(p, ws, e, &ctl, &words, &sc, NULL, NULL, err, sizeof err))
     app_die(prog, "%s", err);
-  return sum;
+  if (sp) {
+    const double c1 = cpu_now(), w1 = now();
+    sp->reset_cpu += b.cpu0 - c0;
+    sp->resets++;
+    sp->step_cpu += c1 - b.cpu0;
+    sp->step_wall += w1 - b.wall0;
+    sp->steps += ws->dyn ? ws->dyn->step : e->steps;
+  }
+  return b.sum;
 }
 
 /* what the ODE step solved over some trials: sub-steps, those with the robot in ODE, contact
  * points by pair kind (stDynInfo) */
 typedef struct dynStats {
   long substeps, ode_substeps, unstable, redos, aredos, hinge_substeps;
-  long lcps, lcp_reduced, lcp_rows, lcp_unbounded, lcp_orders; /* dynamics.lcp = schur */
+  long lcps, lcp_reduced, lcp_rows, lcp_unbounded, lcp_orders; /* dynamics.lcp = schur ... */
+  long lcp_direct, lcp_fallbacks;                              /* ... warm */
   long points[ST_DYN_PAIR_COUNT];
 } dynStats;
 
@@ -96,6 +147,8 @@ static void stats_add(dynStats *st, const stWorld *w) {
   st->lcp_rows += in.lcp_reduced_rows;
   st->lcp_unbounded += in.lcp_unbounded_rows;
   st->lcp_orders += in.lcp_orderings;
+  st->lcp_direct += in.lcp_direct;
+  st->lcp_fallbacks += in.lcp_fallbacks;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) st->points[k] += in.contact_points[k];
 }
 
@@ -112,6 +165,8 @@ static void stats_merge(dynStats *to, const dynStats *from) {
   to->lcp_rows += from->lcp_rows;
   to->lcp_unbounded += from->lcp_unbounded;
   to->lcp_orders += from->lcp_orders;
+  to->lcp_direct += from->lcp_direct;
+  to->lcp_fallbacks += from->lcp_fallbacks;
   for (int k = 0; k < ST_DYN_PAIR_COUNT; k++) to->points[k] += from->points[k];
 }
 
@@ -122,16 +177,24 @@ static void stats_merge(dynStats *to, const dynStats *from) {
 typedef struct pressPlan pressPlan;
 static int fixed_trial(stWorld *w, const stScene *scene, const double *q0, const double *obj,
                        const double *target, const double (*plan_y)[ST_NDOF], int steps,
-                       uint64_t seed, dynStats *st) {
+                       uint64_t seed, dynStats *st, spent *sp) {
+  const double c0 = cpu_now();
   st_world_set_seed(w, seed);
   st_world_reset(w, q0, obj, target);
   if (!plan_y) st_world_set_object_table_collision(w, 0);
   double y[ST_NET_MAX_OUT] = {0};
   memcpy(y, q0, sizeof(double) * ST_NDOF);
-  for (int t = 0; t < steps && !st_world_unstable(w); t++) {
+  const double c1 = cpu_now(), w1 = now();
+  int t = 0;
+  for (; t < steps && !st_world_unstable(w); t++) {
     if (plan_y) memcpy(y, plan_y[t], sizeof(double) * ST_NDOF);
     st_world_step(w, y);
   }
+  sp->step_wall += now() - w1;
+  sp->step_cpu += cpu_now() - c1;
+  sp->reset_cpu += c1 - c0;
+  sp->resets++;
+  sp->steps += t;
   stats_add(st, w);
   return !st_world_unstable(w) && w->obj[2] > scene->table_hi[2];
 }
@@ -140,20 +203,21 @@ static void plan_trial(const pressPlan *plan, int k, const double **q0, const do
                        const double **target, const double (**y)[ST_NDOF]);
 
 /* T contact-rich trials on the given threads (trial t: start t mod 4 of press with a plan, else
- * of held; with solver step the same start gives the same trajectory); returns the elapsed
- * time and counts the balls kept */
-static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPlan *plan,
-                        int trials, int steps, int threads, long *kept, dynStats *stats,
-                        stDynInfo *info) {
-  double t0 = now();
+ * of held; with solver step the same start gives the same trajectory); adds the time spent to
+ * *sp and counts the balls kept */
+static void fixed_run(const stProtocol *p, const stDynDef *def, const pressPlan *plan,
+                      int trials, int steps, int threads, long *kept, dynStats *stats,
+                      stDynInfo *info, spent *sp) {
   long k_sum = 0;
 #pragma omp parallel num_threads(threads) reduction(+ : k_sum)
   {
-    stWorld *w = NULL;
     char e[256];
     dynStats mine;
+    spent my;
     memset(&mine, 0, sizeof mine);
-    if (st_world_create_dynamic(p->robot, &p->scene, def, &w, e, sizeof e) == ST_OK) {
+    memset(&my, 0, sizeof my);
+    stWorld *w = create_timed(p, def, &my, e, sizeof e);
+    if (w) {
 #pragma omp single
       st_world_dynamic_info(w, info);
 #pragma omp for schedule(dynamic, 1)
@@ -163,7 +227,7 @@ static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPla
         const double *target = p->scene.target[k % 2];
         const double(*y)[ST_NDOF] = NULL;
         if (plan) plan_trial(plan, k, &q0, &obj, &target, &y);
-        k_sum += fixed_trial(w, &p->scene, q0, obj, target, y, steps, (uint64_t)t, &mine);
+        k_sum += fixed_trial(w, &p->scene, q0, obj, target, y, steps, (uint64_t)t, &mine, &my);
       }
       st_world_destroy(w);
     } else {
@@ -171,10 +235,12 @@ static double fixed_run(const stProtocol *p, const stDynDef *def, const pressPla
       fprintf(stderr, "%s: %s\n", prog, e);
     }
 #pragma omp critical
-    stats_merge(stats, &mine);
+    {
+      stats_merge(stats, &mine);
+      spent_merge(sp, &my);
+    }
   }
   *kept += k_sum;
-  return now() - t0;
 }
 
 /* one line of what the solver had to do in a scenario: the share of sub-steps with the robot in
@@ -199,24 +265,27 @@ static void print_rows(const char *name, const dynStats *st) {
   if (st->lcps) { /* dynamics.lcp = schur: what the reduction took */
     const double red = st->lcp_reduced > 0 ? (double)st->lcp_reduced : 1.0;
     printf("lcp scenario=%s reduced=%.0f%% rows_per_reduced=%.1f unbounded=%.1f bounded=%.1f "
-           "orders_computed=%.1f%%\n", name, 100.0 * (double)st->lcp_reduced / (double)st->lcps,
-           (double)st->lcp_rows / red, (double)st->lcp_unbounded / red,
-           (double)(st->lcp_rows - st->lcp_unbounded) / red, 100.0 * (double)st->lcp_orders / red);
+           "orders_computed=%.1f%% direct=%.1f%% fallback=%.1f%%\n", name,
+           100.0 * (double)st->lcp_reduced / (double)st->lcps, (double)st->lcp_rows / red,
+           (double)st->lcp_unbounded / red, (double)(st->lcp_rows - st->lcp_unbounded) / red,
+           100.0 * (double)st->lcp_orders / red, 100.0 * (double)st->lcp_direct / red,
+           100.0 * (double)st->lcp_fallbacks / red);
   }
 }
 
-/* T dynamic trials on the given threads; returns the elapsed time, fills per_trial */
-static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParams *np, int ngenome,
-                      int trials, int steps, int threads, double *per_trial, dynStats *stats,
-                      stDynInfo *info) {
-  double t0 = now();
+/* T dynamic trials on the given threads; adds the time spent to *sp, fills per_trial */
+static void dyn_run(const stProtocol *p, const stDynDef *def, const stNetParams *np, int ngenome,
+                    int trials, int steps, int threads, double *per_trial, dynStats *stats,
+                    stDynInfo *info, spent *sp) {
 #pragma omp parallel num_threads(threads)
   {
     dynStats mine;
+    spent my;
     memset(&mine, 0, sizeof mine);
-    stWorld *w = NULL;
+    memset(&my, 0, sizeof my);
     char e[256];
-    if (st_world_create_dynamic(p->robot, &p->scene, def, &w, e, sizeof e) == ST_OK) {
+    stWorld *w = create_timed(p, def, &my, e, sizeof e);
+    if (w) {
       stWorkspace ws = {NULL, w, NULL}; /* the episodes run on this world, with its def */
 #pragma omp single
       st_world_dynamic_info(w, info);
@@ -229,7 +298,7 @@ static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParam
         stWords unused;
         st_trial_episode(p, &spec, (uint64_t)t, &ep, &unused);
         ep.steps = steps;
-        per_trial[t] = bench_trial(p, &ws, &np[t % ngenome], &ep, prim);
+        per_trial[t] = bench_trial(p, &ws, &np[t % ngenome], &ep, prim, &my);
         stats_add(&mine, w);
       }
       st_world_destroy(w);
@@ -238,9 +307,11 @@ static double dyn_run(const stProtocol *p, const stDynDef *def, const stNetParam
       fprintf(stderr, "%s: %s\n", prog, e);
     }
 #pragma omp critical
-    stats_merge(stats, &mine);
+    {
+      stats_merge(stats, &mine);
+      spent_merge(sp, &my);
+    }
   }
-  return now() - t0;
 }
 
 /* one configuration's figures over the repetitions: per repetition, control steps per wall
@@ -250,6 +321,7 @@ typedef struct dynFigures {
   long press_kept, held_kept;
   dynStats st, pst, hst;
   stDynInfo info;
+  spent setup; /* creation and resets, every scenario and repetition (the steps' too) */
 } dynFigures;
 
 static void figures_alloc(dynFigures *f, int reps) {
@@ -331,7 +403,7 @@ static void press_record(const stProtocol *p, const stDynDef *def, pressPlan *pl
   ctl.reset = rec_reset;
   ctl.act = rec_act;
   ctl.self = r;
-  double sum = 0;
+  benchScore sum = {0, 0, 0};
   const stScorer sc = {NULL, sum_step, NULL, &sum};
   for (int k = 0; k < ST_NPOSTURE; k++) {
     stTrialSpec spec;
@@ -361,27 +433,41 @@ static void figures_rep(const stProtocol *p, const stDynDef *def, const pressPla
                         const stNetParams *np, int ngenome, int trials, int steps, int threads,
                         const char *only, double *per_trial, dynFigures *f, int r) {
   const int fixed_trials = 4 * ST_NPOSTURE;
-  double c0 = cpu_now();
+  /* rates of the steps alone: per CPU-second summed over the threads, and per wall second with
+   * the threads' step times overlapping */
   if (!only || !strcmp(only, "random")) {
-    const double dt = dyn_run(p, def, np, ngenome, trials, steps, threads, per_trial, &f->st,
-                              &f->info);
-    f->rate[r] = (double)trials * steps / dt;
-    f->cpu[r] = (double)trials * steps / (cpu_now() - c0);
+    spent sp = {0, 0, 0, 0, 0, 0, 0};
+    dyn_run(p, def, np, ngenome, trials, steps, threads, per_trial, &f->st, &f->info, &sp);
+    f->rate[r] = (double)sp.steps * threads / sp.step_wall;
+    f->cpu[r] = (double)sp.steps / sp.step_cpu;
+    spent_merge(&f->setup, &sp);
   }
   if (!only || !strcmp(only, "press")) {
-    c0 = cpu_now();
-    const double dt = fixed_run(p, def, plan, fixed_trials, PRESS_STEPS, threads, &f->press_kept,
-                                &f->pst, &f->info);
-    f->press[r] = (double)fixed_trials * PRESS_STEPS / dt;
-    f->pcpu[r] = (double)fixed_trials * PRESS_STEPS / (cpu_now() - c0);
+    spent sp = {0, 0, 0, 0, 0, 0, 0};
+    fixed_run(p, def, plan, fixed_trials, PRESS_STEPS, threads, &f->press_kept, &f->pst, &f->info,
+              &sp);
+    f->press[r] = (double)sp.steps * threads / sp.step_wall;
+    f->pcpu[r] = (double)sp.steps / sp.step_cpu;
+    spent_merge(&f->setup, &sp);
   }
   if (!only || !strcmp(only, "held")) {
-    c0 = cpu_now();
-    const double dt = fixed_run(p, def, NULL, fixed_trials, steps, threads, &f->held_kept, &f->hst,
-                                &f->info);
-    f->held[r] = (double)fixed_trials * steps / dt;
-    f->hcpu[r] = (double)fixed_trials * steps / (cpu_now() - c0);
+    spent sp = {0, 0, 0, 0, 0, 0, 0};
+    fixed_run(p, def, NULL, fixed_trials, steps, threads, &f->held_kept, &f->hst, &f->info, &sp);
+    f->held[r] = (double)sp.steps * threads / sp.step_wall;
+    f->hcpu[r] = (double)sp.steps / sp.step_cpu;
+    spent_merge(&f->setup, &sp);
   }
+}
+
+/* the line of what the rates leave out: creating a world and resetting it, CPU ms each, and
+ * their share of all the CPU time the scenarios took */
+static void print_setup(const char *name, const spent *sp) {
+  const double all = sp->step_cpu + sp->create_cpu + sp->reset_cpu;
+  printf("setup=%s create_cpu_ms=%.3f creates=%ld reset_cpu_ms=%.4f resets=%ld "
+         "share_of_cpu=%.1f%% (not in the rates)\n", name,
+         sp->creates ? 1e3 * sp->create_cpu / (double)sp->creates : 0.0, sp->creates,
+         sp->resets ? 1e3 * sp->reset_cpu / (double)sp->resets : 0.0, sp->resets,
+         all > 0 ? 100.0 * (sp->create_cpu + sp->reset_cpu) / all : 0.0);
 }
 
 static int bench_dynamic(const stProtocol *p, const char *baseline_set, int baseline, int threads,
@@ -439,6 +525,8 @@ static int bench_dynamic(const stProtocol *p, const char *baseline_set, int base
            b.st.unstable + b.pst.unstable + b.hst.unstable, b.cpu[m], f.cpu[m] / b.cpu[m],
            b.pcpu[m], f.pcpu[m] / b.pcpu[m], b.press_kept, fixed_all, b.hcpu[m],
            f.hcpu[m] / b.hcpu[m], b.held_kept, fixed_all);
+  print_setup("set", &f.setup);
+  if (baseline) print_setup("baseline", &b.setup);
   if (rows) {
     print_rows("random", &f.st);
     print_rows("press", &f.pst);
@@ -536,7 +624,7 @@ int main(int argc, char **argv) {
           stEpisodeSpec et = ep;
           memcpy(et.obj, p->scene.obj_pos[t % ST_NPOSTURE], sizeof et.obj);
           memcpy(et.target, p->scene.target[t % 2], sizeof et.target);
-          per_trial[t] = bench_trial(p, &ws, &np[t % NGENOME], &et, ST_PRIM_REACH);
+          per_trial[t] = bench_trial(p, &ws, &np[t % NGENOME], &et, ST_PRIM_REACH, NULL);
         }
         st_world_destroy(w);
       }

@@ -42,6 +42,7 @@ run_part "fault injection: full disk, read-only directory, failing sync and rena
 run_part "evolve under MPI: any number of ranks, faults, resume; cluster scripts" bash tests/check_mpi.sh
 run_part "committed primitive runs replay 16/16 in main-prim" bash tests/check_populations.sh
 run_part "scripted controller: every primitive is physically achievable" bash tests/check_scripted.sh
+run_part "compare against MuJoCo: the harness on a tiny run" bash tests/check_compare.sh
 run_part "integrated stage: score, conditions, resume, threads, replay" bash tests/check_integrated.sh
 run_part "post-evaluations: tables, exclusion, threads, bad input" bash tests/check_posteval.sh
 run_part "tools: run summaries and fitness plots" bash tests/check_tools.sh

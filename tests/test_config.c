@@ -728,8 +728,9 @@ static void test_config_check_number(void) {
   CU_ASSERT_EQUAL(st_config_check_number("dynamics", "free_motion", 1, err, sizeof err), ST_OK);
   CU_ASSERT_EQUAL(st_config_check_number("dynamics", "free_motion", 2, err, sizeof err), ST_ERR_RANGE);
   CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 1, err, sizeof err), ST_OK);
-  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 2, err, sizeof err), ST_ERR_RANGE);
-  ST_ASSERT_CONTAINS(err, "dynamics.lcp: 2 is out of range (expected one of dense|schur)");
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 3, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 4, err, sizeof err), ST_ERR_RANGE);
+  ST_ASSERT_CONTAINS(err, "dynamics.lcp: 4 is out of range (expected one of dense|schur|block|warm)");
   CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", -1, err, sizeof err), ST_ERR_RANGE);
   CU_ASSERT_EQUAL(st_config_check_number("dynamics", "lcp", 0.5, err, sizeof err), ST_ERR_RANGE);
   CU_ASSERT_EQUAL(st_config_check_number("ga", "nope", 1, err, sizeof err), ST_ERR_ARG);

@@ -217,7 +217,7 @@ typedef enum stConfigTier {
   BOOL(dynamics, motor_active_set, 0, "1 (solver step): unsaturated hinge motors enter the LCP unbounded, checked after the step, redone bounded if one saturates: the same solution up to rounding (PROTOCOL, Speed)") \
   STR(dynamics, adaptive_joints, "", "the hinges after kinematic_joints, in chain order, that are exact servos while the torque they need stays within adaptive_limit of theirs, else motors (PROTOCOL, Speed); empty: none") \
   REAL(dynamics, adaptive_limit, 0.5, 0.01, 1.0, "adaptive_joints: an exact servo needing more than this times its motor's torque limit becomes a motor again, and a servo again below half of it") \
-  ENUM(dynamics, lcp, 0, "dense|schur", "solver step: dense, ODE's Dantzig on the whole LCP; schur, the joints' unbounded rows eliminated first (sparse), ODE's on the rest: the same solution up to rounding (PROTOCOL, Speed)") \
+  ENUM(dynamics, lcp, 0, "dense|schur|block|warm", "solver step: dense, ODE's Dantzig on the whole LCP; schur, joint rows eliminated first; block, by joint blocks; warm, block and the rest solved from the last active set (PROTOCOL, Speed)") \
   /* DYNAMICS_KEYS_END: the dynamic-world engineer adds [dynamics] rows above this line */
 
 #define ST__CONFIG_POSTEVAL_KEYS(INT, REAL, BOOL, ENUM, STR)                                     \

@@ -125,7 +125,8 @@ ST_API const char *st_shape_kind_name(int kind);
  * posture, object, target, seed and commands, bit for bit. */
 
 enum { ST_DYN_QUICKSTEP = 0, ST_DYN_STEP, ST_DYN_SOLVER_COUNT }; /* dynamics.solver */
-enum { ST_DYN_LCP_DENSE = 0, ST_DYN_LCP_SCHUR, ST_DYN_LCP_COUNT };  /* dynamics.lcp */
+enum { ST_DYN_LCP_DENSE = 0, ST_DYN_LCP_SCHUR, ST_DYN_LCP_BLOCK, ST_DYN_LCP_WARM,
+       ST_DYN_LCP_COUNT }; /* dynamics.lcp */
 
 /* The [dynamics] keys (selftalk/config.h, ST_CONFIG_DYNAMICS_KEYS: their meaning, defaults and
  * ranges), one field each named as its key: solver (ST_DYN_*), substep (s; the control step
@@ -256,6 +257,8 @@ typedef struct stDynInfo {
   long contact_points[ST_DYN_PAIR_COUNT]; /* contact joints made since the last reset, by pair
                                              (ST_DYN_PAIR_*): each is 3 rows of ODE's LCP (1
                                              with zero friction), beside 6 per hinge in ODE */
+  long lcp_direct;      /* dynamics.lcp = warm: reduced LCPs solved directly, guess checked ... */
+  long lcp_fallbacks;   /* ... and those left to ODE's Dantzig */
 } stDynInfo;
 
 /* Fills info (all zero for a kinematic world). */

@@ -424,8 +424,9 @@ stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz
       return st__errf(err, errsz, "dynamics.solver: quickstep, but %s (expected step)", g_rand_why),
              ST_ERR_RANGE;
   }
-  if (def->lcp == ST_DYN_LCP_SCHUR && (why = st__lcp_unavailable()))
-    return st__errf(err, errsz, "dynamics.lcp: schur, but %s (expected dense)", why), ST_ERR_RANGE;
+  if (def->lcp != ST_DYN_LCP_DENSE && (why = st__lcp_unavailable()))
+    return st__errf(err, errsz, "dynamics.lcp: %s, but %s (expected dense)",
+                    st_config_enum_name("dynamics", "lcp", def->lcp), why), ST_ERR_RANGE;
   dynInternal *d = calloc(1, sizeof *d);
   if (!d) return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
   d->head.backend = &st__dyn_backend;
@@ -438,9 +439,10 @@ stStatus st__dyn_create(stWorld *w, const stDynDef *def, char *err, size_t errsz
   d->solver = def->solver;
   if (!alloc_arrays(d, w->robot->model) || !create_ode_world(d))
     return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
-  if (def->lcp == ST_DYN_LCP_SCHUR) {
+  if (def->lcp != ST_DYN_LCP_DENSE) {
     if (!(d->lcp = st__lcp_create()))
       return st__errf(err, errsz, "dynamic world: out of memory"), ST_ERR_NOMEM;
+    st__lcp_set_mode(d->lcp, def->lcp);
     /* room in ODE's step arena for the check mode's second solve (lib/world/ode_lcp.h): the
      * steps' own need is far below 1 MB */
     const dWorldStepReserveInfo reserve = {sizeof reserve, 2.0f, 1u << 20};

@@ -263,7 +263,7 @@ static void reset_counters(dynInternal *d) {
   d->dyn_substeps = 0;
   d->dyn_hinge_substeps = 0;
   memset(d->points, 0, sizeof d->points);
-  if (d->lcp) st__lcp_stats_reset(d->lcp);
+  if (d->lcp) st__lcp_reset(d->lcp);
   d->unstable = 0;
   d->reason[0] = 0;
   d->rand_state = (uint32_t)(st_rng_mix64(d->seed ^ 0x6f64655f72616e64ull) >> 32);

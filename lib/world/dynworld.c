@@ -80,9 +80,9 @@ stStatus st__dyn_check_def(const stDynDef *d, double dt, int *nsub, char *err, s
   if (d->motor_active_set && d->solver != ST_DYN_STEP)
     BAD("dynamics.motor_active_set: on with solver quickstep (expected solver step: it acts on "
         "the direct solver's LCP only)");
-  if (d->lcp == ST_DYN_LCP_SCHUR && d->solver != ST_DYN_STEP)
-    BAD("dynamics.lcp: schur with solver quickstep (expected solver step: quickstep solves no "
-        "LCP of its own)");
+  if (d->lcp != ST_DYN_LCP_DENSE && d->solver != ST_DYN_STEP)
+    BAD("dynamics.lcp: %s with solver quickstep (expected solver step: quickstep solves no "
+        "LCP of its own)", st_config_enum_name("dynamics", "lcp", d->lcp));
   return ST_OK;
 #undef BAD
 }
@@ -151,6 +151,8 @@ static void dyn_info(const stWorld *w, stDynInfo *info) {
   info->lcp_reduced_rows = ls.rows;
   info->lcp_unbounded_rows = ls.unbounded;
   info->lcp_orderings = ls.orderings;
+  info->lcp_direct = ls.direct;
+  info->lcp_fallbacks = ls.fallbacks;
   memcpy(info->contact_points, d->points, sizeof d->points);
 }
 

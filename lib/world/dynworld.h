@@ -90,7 +90,7 @@ typedef struct dynInternal {
   int ncfb;
   int kin_static_hit;       /* lowest adaptive kinematic body touching the table or the floor
                                (no contact joint can act there), or nhinge for none */
-  stLcp *lcp;               /* dynamics.lcp = schur: the reduction's scratch; else NULL */
+  stLcp *lcp;               /* dynamics.lcp other than dense: the reduction's scratch; else NULL */
   long adapt_redos;         /* sub-steps redone because an adaptive joint needed more torque */
   double (*saved)[13];      /* body states before the current sub-step */
   int unstable;
