@@ -25,7 +25,7 @@ stTrialKind st_trial_kind(int index) {
  * every individual, on a stream of their own so the other draws are unchanged */
 static void vary_start(const stProtocol *p, int generation, stTrialSpec *t) {
   const stConfig *c = &p->cfg;
-  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_STARTS, (uint64_t)generation, 0,
+  stRng rng = st_rng_keyed(st_config_rng_seed(c), ST_RNG_STARTS, (uint64_t)generation, 0,
                            (uint64_t)t->index);
   for (int i = 1; i <= c->postures_vary_draws; i++) {
     stPostureVariation v;
@@ -64,7 +64,7 @@ static void handover_spec(const stProtocol *p, int j, stTrialSpec *t) {
   t->handover = 1;
   t->rollin_steps = c->stage_handover_rollin_steps;
   memcpy(t->qhat0, p->posture[ST_PRIM_REACH][t->k], sizeof t->qhat0);
-  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_HANDOVER, (uint64_t)t->generation, 0,
+  stRng rng = st_rng_keyed(st_config_rng_seed(c), ST_RNG_HANDOVER, (uint64_t)t->generation, 0,
                            (uint64_t)j);
   st_scene_object(&p->scene, t->k, 1, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
@@ -92,7 +92,7 @@ static void trial_spec(const stProtocol *p, stStage stage, int generation, int i
   t->target_index = t->k % 2;
   memcpy(t->qhat0, p->posture[t->primitive][t->k], sizeof t->qhat0);
   /* offsets: object (reach trials only, thesis 2.5.1) then target (every trial, 2.5.2) */
-  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_TRIAL, (uint64_t)generation, 0, (uint64_t)index);
+  stRng rng = st_rng_keyed(st_config_rng_seed(c), ST_RNG_TRIAL, (uint64_t)generation, 0, (uint64_t)index);
   st_scene_object(&p->scene, t->k, t->primitive == ST_PRIM_REACH, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
   if (draw && (varied || (st_vary_replacing(c, generation) &&
@@ -373,7 +373,7 @@ uint64_t st_trial_seed_key(const stProtocol *p, int generation, int individual, 
   ST_ASSERT(p);
   ST_ASSERT(generation >= 0 && individual >= 0);
   ST_ASSERT(index >= 0 && index < ST_MAIN_TRIALS_MAX);
-  const uint64_t seed = (uint64_t)p->cfg.run_seed;
+  const uint64_t seed = st_config_rng_seed(&p->cfg);
   /* elite roll-ins: one key for every individual, or ODE's shuffling would part their starts */
   const int handover = st_trial_kind(index) == ST_TRIAL_HANDOVER;
   if (handover && p->cfg.stage_handover_rollin == ST_ROLLIN_ELITE) individual = 0;
