@@ -584,7 +584,7 @@ int main(int argc, char **argv) {
   enum { NGENOME = 64 };
   stNetParams *np = malloc(sizeof *np * NGENOME);
   for (int i = 0; i < NGENOME; i++) {
-    stRng rng = st_rng_keyed(cfg.run_seed, ST_RNG_INIT, 0, (uint64_t)i, 0);
+    stRng rng = st_rng_keyed(st_config_rng_seed(&cfg), ST_RNG_INIT, 0, (uint64_t)i, 0);
     stGenome g;
     st_genome_random(&g, ST_GENES_BASE, &rng);
     st_net_decode(NULL, ST_ARCH_BASE, &g, &np[i], NULL, 0);

@@ -465,6 +465,34 @@ static void test_int_trial_order(void) {
   }
 }
 
+/* run.rng_seed (issue 47): with plain, run seed 4's generation-0 trial-0 offsets are drawn from
+ * the stream that grows run seed 5's individual 0 (tests/test_rng.c); with apart they are keyed
+ * by seed + 2^32, and the offsets move while every other part of the trial stays */
+static void test_int_rng_seed_apart(void) {
+  const stTestFixture *fx = st_test_fixture();
+  CU_ASSERT_PTR_NOT_NULL_FATAL(fx->robot);
+  stIntegratedDef d = small_def(240, 20);
+  stEpisodeSpec e[2];
+  for (int mode = 0; mode < 2; mode++) {
+    stConfig cfg = fx->cfg;
+    cfg.run_seed = 4;
+    cfg.run_rng_seed = mode ? ST_RNG_SEED_APART : ST_RNG_SEED_PLAIN;
+    stProtocol *p = NULL;
+    char err[512] = "";
+    CU_ASSERT_EQUAL_FATAL(st_protocol_create(&cfg, &p, err, sizeof err), ST_OK);
+    st_int_trial(p, &d, 0, 0, 0, &e[mode]);
+    /* the first draw of the trial's stream is its object's x offset (st_int_episode) */
+    stRng r = st_rng_keyed(mode ? (UINT64_C(1) << 32) + 4 : 5, mode ? ST_RNG_INTEGRATED : ST_RNG_GROW,
+                           0, 0, 0);
+    const double dx = st_rng_range(&r, -p->scene.obj_offset, p->scene.obj_offset);
+    CU_ASSERT(fabs(e[mode].obj[0] - p->scene.obj_pos[0][0] - dx) < 1e-12);
+    st_protocol_destroy(p);
+  }
+  CU_ASSERT(e[0].obj[0] != e[1].obj[0]);
+  CU_ASSERT_EQUAL(memcmp(e[0].qhat0, e[1].qhat0, sizeof e[0].qhat0), 0);
+  CU_ASSERT_NOT_EQUAL(e[0].seed_key, e[1].seed_key);
+}
+
 /* three population files of 3 genotypes each (gene 0 = 16 f + i identifies genotype i of file
  * f), top 2, population 8: files f0, f1 by the pattern, then f2: f0g0 f0g1 f1g0 f1g1 f2g0 f2g1,
  * then repeated: f0g0 f0g1. Base genes copied, new genes grown per individual (the two copies
@@ -529,5 +557,6 @@ void st_suite_integrated(void) {
   ST_ADD_TEST(test_int_selftalk_loop);
   ST_ADD_TEST(test_int_trial_table);
   ST_ADD_TEST(test_int_trial_order);
+  ST_ADD_TEST(test_int_rng_seed_apart);
   ST_ADD_TEST(test_int_assembly);
 }

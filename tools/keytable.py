@@ -11,6 +11,7 @@ TIERS = ["protocol", "run", "extension", "diagnostic", "speed"]
 # "section.key": (tier, type, default as config.ini writes it), in the table's order
 KEYS = {
     "run.seed": ("run", "int", "1"),
+    "run.rng_seed": ("extension", "str", "plain"),
     "run.threads": ("speed", "int", "0"),
     "network.arch": ("run", "str", "base"),
     "network.lambda": ("protocol", "float", "1.5"),

@@ -11,6 +11,7 @@
 #ifndef SELFTALK_CONFIG_H
 #define SELFTALK_CONFIG_H
 
+#include <stdint.h>
 #include <stdio.h>
 
 #include "selftalk/base.h"
@@ -42,6 +43,7 @@ typedef enum stConfigTier {
  *   ENUM: choices "a|b|c" (the field holds the index), help     STR: help */
 #define ST_CONFIG_KEYS(INT, REAL, BOOL, ENUM, STR)                                               \
   INT(run, seed, 1, 0, 2147483647, "run seed; keys every random stream (GA, trial offsets)")     \
+  ENUM(run, rng_seed, 0, "plain|apart", "how run.seed keys the streams: plain, as a stream number is (seed a's stream b is seed b's stream a); apart, as seed + 2^32, no run's stream another's (PROTOCOL)") \
   INT(run, threads, 0, 0, 1024, "evaluation threads; 0 = one per core (results do not depend on it)") \
   ENUM(network, arch, 0, "base|A|B", "network architecture: base (primitive stages), A (self talk), B (hidden linguistic memory)") \
   REAL(network, lambda, 1.5, 0.01, 100.0, "sigmoid slope: sigma(x) = 1/(1+exp(-lambda x)) (thesis eq. 2.1)") \
@@ -243,9 +245,10 @@ typedef enum stConfigTier {
   X(RUN, "stage", "init_population") X(RUN, "integrated", "populations")                          \
   X(RUN, "integrated", "words_*") X(RUN, "integrated", "fitness_*")                               \
   X(RUN, "integrated", "first_generation")                                                        \
-  /* ours: the chain stage's hand-over, chained and varied trials, drawn and palm-down starts */ \
+  /* ours: the chain stage's trials, drawn and palm-down starts, seeds kept apart */          \
   X(EXTENSION, "stage", "handover*") X(EXTENSION, "stage", "chain_*")                             \
   X(EXTENSION, "postures", "vary_*") X(EXTENSION, "postures", "reach_palm_down")                  \
+  X(EXTENSION, "run", "rng_seed")                                                                 \
   /* for looking into a result */                                                                 \
   X(DIAGNOSTIC, "stage", "primitives") X(DIAGNOSTIC, "integrated", "selftalk_gate")               \
   /* how fast, not what */                                                                        \
@@ -352,6 +355,16 @@ ST_API unsigned st_config_primitive_mask(const stConfig *cfg);
 enum { ST_STAGES_SIMPLE = 0, ST_STAGES_MAIN, ST_STAGES_PRIMS, ST_STAGES_INTEGRATED };
 enum { ST_CFG_WORDS_NONE = 0, ST_CFG_WORDS_CARETAKER, ST_CFG_WORDS_SELFTALK };
 enum { ST_CFG_FIT_INTEGRATED = 0, ST_CFG_FIT_PREDICTION };
+/* run.rng_seed */
+enum { ST_RNG_SEED_PLAIN = 0, ST_RNG_SEED_APART };
+/* The seed every random stream of a run is keyed by (st_rng_keyed): run.seed, or with
+ * run.rng_seed = apart run.seed + 2^32. st_rng_keyed mixes the seed as it mixes the stream's
+ * number, and XORs the two: (seed a, stream b) and (seed b, stream a) have one key, and so have
+ * (seed a, stream a) for every a. With plain, run seed 4's integrated offsets (stream 5) of
+ * generation 0, trial 0 are run seed 5's new genes (stream 4) of individual 0, and run seed 4's
+ * new genes are run seed 1's initial genotypes (stream 1). Stream numbers are below 2^32, so
+ * with apart no two runs share a key. */
+ST_API uint64_t st_config_rng_seed(const stConfig *cfg);
 /* integrated.fail_end */
 enum { ST_FAIL_END_PENALTY = 0, ST_FAIL_END_EXACT, ST_FAIL_END_RUNOUT };
 /* integrated.trial_order */

@@ -27,7 +27,7 @@ typedef struct stGaDef {
   int elites;           /* best genotypes copied unchanged (ga.elites) */
   int parents;          /* best genotypes that breed (ga.parents; children round-robin over them) */
   double mutation_rate; /* probability of flipping each mutable bit (ga.mutation_rate) */
-  uint64_t seed;        /* run seed: keys every random stream (run.seed) */
+  uint64_t seed;        /* keys every random stream (run.seed as st_config_rng_seed gives it) */
   int ngenes;           /* genes per genotype */
   int first_generation; /* number of the initial generation */
 } stGaDef;

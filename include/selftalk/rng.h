@@ -16,7 +16,10 @@
 extern "C" {
 #endif
 
-/* Purpose of a stream; part of the key so that streams of different purposes never alias.
+/* Purpose of a stream; part of the key so that streams of different purposes of one seed never
+ * alias. st_rng_keyed mixes the seed as it mixes this number, so across seeds they do: (seed a,
+ * stream b) is (seed b, stream a), and (a, a) is (b, b); the library keys a run's streams by
+ * st_config_rng_seed (selftalk/config.h, run.rng_seed = apart: no run's key another's).
  * Values are part of the reproducibility contract: append, never renumber. */
 typedef enum stRngStream {
   ST_RNG_INIT = 1,   /* initial genotypes: (generation 0, individual) */

@@ -91,7 +91,7 @@ static stStatus take_tops(const fileList *l, int top, stGenome *taken, char *err
 static stStatus grow_all(const stConfig *c, const stGenome *taken, int ntaken, stAssembly *a,
                          char *err, size_t errsz) {
   for (int i = 0; i < a->count; i++) {
-    stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_GROW, 0, (uint64_t)i, 0);
+    stRng rng = st_rng_keyed(st_config_rng_seed(c), ST_RNG_GROW, 0, (uint64_t)i, 0);
     stStatus st = st_genome_grow(&taken[i % ntaken], (stNetArch)c->network_arch,
                                  (uint16_t)c->network_typeb_init_gene, &rng, &a->genome[i], err,
                                  errsz);

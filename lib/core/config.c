@@ -499,6 +499,12 @@ static stStatus set_value(stConfig *cfg, const stConfigKey *k, const char *value
   }
 }
 
+uint64_t st_config_rng_seed(const stConfig *cfg) {
+  ST_ASSERT(cfg);
+  const uint64_t seed = (uint64_t)cfg->run_seed; /* 0 .. 2^31 - 1: run.seed's range */
+  return cfg->run_rng_seed == ST_RNG_SEED_APART ? seed + (UINT64_C(1) << 32) : seed;
+}
+
 unsigned st_config_primitive_mask(const stConfig *cfg) {
   ST_ASSERT(cfg);
   unsigned mask = 0;

@@ -25,7 +25,7 @@ stGaDef st_ga_def_from_config(const stConfig *cfg) {
   d.elites = cfg->ga_elites;
   d.parents = cfg->ga_parents;
   d.mutation_rate = cfg->ga_mutation_rate;
-  d.seed = (uint64_t)cfg->run_seed;
+  d.seed = st_config_rng_seed(cfg);
   d.ngenes = st_arch_ngenes(ST_ARCH_BASE);
   d.first_generation = 0;
   return d;

@@ -34,7 +34,7 @@ void st_int_trial(const stProtocol *p, const stIntegratedDef *def, int generatio
                   int i, stEpisodeSpec *e) {
   ST_ASSERT(p && def && e);
   ST_ASSERT(generation >= 0 && individual >= 0 && i >= 0);
-  const uint64_t seed = (uint64_t)p->cfg.run_seed;
+  const uint64_t seed = st_config_rng_seed(&p->cfg);
   stRng rng = st_rng_keyed(seed, ST_RNG_INTEGRATED, (uint64_t)generation, 0, (uint64_t)i);
   const uint64_t key =
       st_rng_keyed(seed, ST_RNG_SOLVER, (uint64_t)generation, (uint64_t)individual, (uint64_t)i).key;

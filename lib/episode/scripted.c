@@ -518,7 +518,7 @@ stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted
   stTrialSpec t;
   st_trial_spec(p, ST_STAGE_MAIN, 0, index, &t);
   const uint64_t key =
-      st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, 0, 0, (uint64_t)index).key;
+      st_rng_keyed(st_config_rng_seed(&p->cfg), ST_RNG_TRIAL, 0, 0, (uint64_t)index).key;
   const stController c = st_scripted_controller(s);
   return st_trial_run(p, ws, &t, &c, key, r, trace, ctx, err, errsz);
 }
@@ -536,7 +536,7 @@ stStatus st_scripted_integrated(const stProtocol *p, stWorkspace *ws, stScripted
   stIntegratedDef def;
   st_integrated_def_from_config(&p->cfg, &def);
   /* trial 2k + t of generation 0 keys the solver's generator, as an individual's trial would */
-  const uint64_t key = st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_SOLVER, 0, 0,
+  const uint64_t key = st_rng_keyed(st_config_rng_seed(&p->cfg), ST_RNG_SOLVER, 0, 0,
                                     (uint64_t)(2 * k + t)).key;
   stEpisodeSpec e;
   st_int_episode(p, &def, k, t, NULL, key, &e);

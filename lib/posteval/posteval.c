@@ -59,7 +59,7 @@ void st_post_def_from_config(const stConfig *c, stPostTest test, stPostDef *d) {
   ST_ASSERT(c && d);
   memset(d, 0, sizeof *d);
   d->test = test;
-  d->seed = (uint64_t)c->run_seed;
+  d->seed = st_config_rng_seed(c);
   d->cells = c->posteval_generalisation_cells;
   d->cell_size = c->posteval_generalisation_cell_size;
   d->center[0] = c->scene_object_center_x;

@@ -21,7 +21,7 @@ int st__main_table_off(const stConfig *c, int primitive) {
 
 void st__drawn_start(const stProtocol *p, stTrialSpec *t) {
   const stConfig *c = &p->cfg;
-  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_STARTS, (uint64_t)t->generation, 0,
+  stRng rng = st_rng_keyed(st_config_rng_seed(c), ST_RNG_STARTS, (uint64_t)t->generation, 0,
                            (uint64_t)t->index);
   for (int i = 1; i <= c->postures_vary_draws; i++) {
     stPostureVariation v;
@@ -41,7 +41,7 @@ void st__fixed_trial(const stProtocol *p, stTrialSpec *t, int primitive, int k, 
   t->k = k;
   t->target_index = k % 2;
   memcpy(t->qhat0, p->posture[primitive][k], sizeof t->qhat0);
-  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_TRIAL, (uint64_t)t->generation, 0,
+  stRng rng = st_rng_keyed(st_config_rng_seed(c), ST_RNG_TRIAL, (uint64_t)t->generation, 0,
                            (uint64_t)t->index);
   st_scene_object(&p->scene, k, primitive == ST_PRIM_REACH, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
@@ -73,7 +73,7 @@ static void fixed_spec(const stProtocol *p, stTrialSpec *t) {
 
 /* the solver's key of a trial index (the fixed and the varied trials) */
 static uint64_t fixed_seed_key(const stProtocol *p, int generation, int individual, int j) {
-  return st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
+  return st_rng_keyed(st_config_rng_seed(&p->cfg), ST_RNG_TRIAL, (uint64_t)generation,
                       (uint64_t)individual,
                       (uint64_t)(st_trial_kind_first(ST_TRIAL_FIXED) + j)).key;
 }

@@ -27,7 +27,7 @@ static void handover_spec(const stProtocol *p, stTrialSpec *t) {
   t->target_index = t->k % 2;
   t->rollin_steps = c->stage_handover_rollin_steps;
   memcpy(t->qhat0, p->posture[ST_PRIM_REACH][t->k], sizeof t->qhat0);
-  stRng rng = st_rng_keyed((uint64_t)c->run_seed, ST_RNG_HANDOVER, (uint64_t)t->generation, 0,
+  stRng rng = st_rng_keyed(st_config_rng_seed(c), ST_RNG_HANDOVER, (uint64_t)t->generation, 0,
                            (uint64_t)t->j);
   st_scene_object(&p->scene, t->k, 1, &rng, t->obj);
   st_scene_target(&p->scene, t->target_index, &rng, t->target);
@@ -38,7 +38,7 @@ static void handover_spec(const stProtocol *p, stTrialSpec *t) {
 /* elite roll-ins: one key for every individual, or ODE's shuffling would part their starts */
 static uint64_t handover_seed_key(const stProtocol *p, int generation, int individual, int j) {
   if (p->cfg.stage_handover_rollin == ST_ROLLIN_ELITE) individual = 0;
-  return st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_HANDOVER_SOLVER, (uint64_t)generation,
+  return st_rng_keyed(st_config_rng_seed(&p->cfg), ST_RNG_HANDOVER_SOLVER, (uint64_t)generation,
                       (uint64_t)individual, (uint64_t)j).key;
 }
 

@@ -36,7 +36,7 @@ static void varied_spec(const stProtocol *p, stTrialSpec *t) {
 }
 
 static uint64_t varied_seed_key(const stProtocol *p, int generation, int individual, int j) {
-  return st_rng_keyed((uint64_t)p->cfg.run_seed, ST_RNG_TRIAL, (uint64_t)generation,
+  return st_rng_keyed(st_config_rng_seed(&p->cfg), ST_RNG_TRIAL, (uint64_t)generation,
                       (uint64_t)individual,
                       (uint64_t)(st_trial_kind_first(ST_TRIAL_VARIED) + j)).key;
 }
