@@ -39,5 +39,28 @@ else
   ko "--trace writes one row per step" "$(ls "$tmp/trace" 2>&1 | head -3)"
 fi
 
+
+# --generations: the main-prim trials over several generations' trial tables; generation 0's
+# are the plain run's (same success and steps), every reach trial of generations 0-2 succeeds
+"$APPDIR/scripted" --only main_reach --generations 0:2 --threads 2 >"$tmp/sweep" 2>&1
+rc=$?
+if [ "$rc" = 0 ] && [ "$(grep -c '^sweep [0-9]' "$tmp/sweep")" = 12 ] &&
+   grep -qE '^scripted: 12 passed, 0 failed$' "$tmp/sweep" &&
+   [ "$(grep -cE '^sweep main-prim reach [0-3] solved=3 of 3 ' "$tmp/sweep")" = 4 ]; then
+  ok "--generations 0:2: 12 reach trials, all solved"
+else
+  ko "--generations 0:2: 12 reach trials, all solved" "exit $rc, $(tail -3 "$tmp/sweep")"
+fi
+plain=$(grep '^trial main-prim reach' "$tmp/out2" | awk '{print $4, $5, $6}')
+swept=$(grep '^sweep 0 main-prim reach' "$tmp/sweep" | awk '{print $5, $6, $7}')
+if [ -n "$plain" ] && [ "$plain" = "$swept" ]; then
+  ok "--generations: generation 0 is the plain run"
+else
+  ko "--generations: generation 0 is the plain run" "$plain / $swept"
+fi
+"$APPDIR/scripted" --only main_reach --generations 0:2 --threads 1 >"$tmp/sweep1" 2>&1
+if cmp -s "$tmp/sweep" "$tmp/sweep1"; then ok "--generations: same on 1 and 2 threads"; else ko "--generations: same on 1 and 2 threads" "$(diff "$tmp/sweep" "$tmp/sweep1" | head -4)"; fi
+if ! "$APPDIR/scripted" --generations 3:1 >/dev/null 2>&1; then ok "--generations 3:1 refused"; else ko "--generations 3:1 refused" "accepted"; fi
+
 echo "check_scripted: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # tools/: runs_summary.py and plot_fitness.py on hand-made fitness.csv files whose answers are
 # known (which generation completes each stage, how many solved spans the plot draws), and
-# grasp_probe's trace against free fall worked out by hand, run_independence's streams.
+# grasp_probe's trace against free fall worked out by hand, run_independence's streams,
+# trial_sweep against replay.
 set -u
 CHECK=check_tools
 source "$(dirname "$0")/check_lib.sh"
@@ -125,6 +126,41 @@ out2=$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)
 grep -qxF "  reach starts position only, palm as the arm leaves it (postures.reach_palm_down); contact none (simple-prim is kinematic)" <<<"$out" &&
   grep -qxF "  reach starts palm down (postures.reach_palm_down); contact ODE, dynamics.lcp = schur" <<<"$out2" &&
   ok "run_report: the run's reach starts and contact solver" || ko "run_report starts and solver: $out $out2"
+# trial_sweep: the final best of prims_s2 on reach k=1 and grasp k=0 at the offsets of its last
+# generation (831) is replay's trial (same success and sum_S); lines in (generation, genotype,
+# trial) order whatever --threads; a bad --generations refused
+ts="${BUILD:-build}/trial_sweep"
+r2=data/evolved/prims_s2
+sw=$("$ts" $r2/config.ini $r2/population.genome --trials 1,8 --generations 831:831 --count 1 2>&1)
+same=1
+for k in 1 8; do
+  rep=$("${APPDIR:-apps}/replay" $r2/population.genome $r2/config.ini --trial $k --stage main --generation 831 --index 0 2>/dev/null |
+        sed -n 's/.* success=\([01]\) .* sum_S=\([0-9.]*\) sum_P=\([0-9.]*\) .*/success=\1 .* sum_S=\2 sum_P=\3 /p')
+  [ -n "$rep" ] && grep -qE "^831 0 $k $rep" <<<"$sw" || same=0
+done
+if [ $same = 1 ]; then ok "trial_sweep: replay's trials"; else ko "trial_sweep vs replay" "$sw"; fi
+"$ts" $r2/config.ini $r2/population.genome --trials 0,1 --generations 830:831 --count 2 --threads 2 >"$t/ts2" 2>&1
+"$ts" $r2/config.ini $r2/population.genome --trials 0,1 --generations 830:831 --count 2 --threads 1 >"$t/ts1" 2>&1
+if [ "$(awk '{print $1, $2, $3}' "$t/ts2" | tr '\n' ' ')" = "830 0 0 830 0 1 830 1 0 830 1 1 831 0 0 831 0 1 831 1 0 831 1 1 " ] &&
+   cmp -s "$t/ts1" "$t/ts2"; then
+  ok "trial_sweep: order and threads"
+else
+  ko "trial_sweep order" "$(head -3 "$t/ts2")"
+fi
+# sweep_summary.py on hand-made rows: genotype 0's palm x is 0.1 + 0.5 obj x (a gain of 0.5),
+# genotype 1 solves all 4 trials, genotype 0 fails trial 1
+for i in 0 1; do for k in 0 1 2 3; do
+  ok1=1; [ $i = 0 ] && [ $k = 1 ] && ok1=0
+  x=$(awk -v k=$k 'BEGIN { printf "%.4f", 0.2 + 0.1 * k }'); px=$(awk -v x="$x" 'BEGIN { printf "%.4f", 0.1 + 0.5 * x }')
+  echo "7 $i $k success=$ok1 steps=100 sum_S=50 sum_P=0 min_d_r=0.02 final_d_r=0.02 first_success_step=3 palm=$px,0.1,0.05 obj=$x,0.1,-0.045"
+done; done >"$t/sweep.txt"
+out=$(python3 tools/sweep_summary.py "$t/sweep.txt" 2>&1)
+grep -qF "trial 1: solved in 50.0% of genotype x generation; by 1 genotypes at 7" <<<"$out" &&
+  grep -qF "all listed trials: genotypes per generation 1/1/1" <<<"$out" &&
+  grep -qF "palm x = 0.50 obj x +0.100" <<<"$out" &&
+  ok "sweep_summary: solved counts and the reach gain" || ko "sweep_summary" "$out"
+"$ts" $r2/config.ini $r2/population.genome --generations 5:2 >/dev/null 2>"$t/err"; rc=$?
+[ $rc = 2 ] && grep -q "expected FIRST:LAST" "$t/err" && ok "trial_sweep: bad --generations refused" || ko "trial_sweep bad generations rc=$rc"
 # grasp_probe --trace: a hand held 5 cm above the ball that never closes leaves it alone, so once
 # the table collision goes off after step 39 the ball free-falls by ODE's semi-implicit Euler,
 # g h^2 n (n + 1) / 2 after n sub-steps of h = 0.01 s: 0.01471 m after step 40 (n = 5), 0.05396 m
@@ -260,11 +296,12 @@ generated csvschema "the library's tables"
 generated keytable "the library's key table (its tiers and defaults)"
 gen="${BUILD:-build}/csvschema"
 # its defaults read as config.ini writes them: a run of the shipped simple-prim config departs in
-# its --set keys and the shipped palm-down starts (an extension, SPEC 13) alone
+# its --set keys, its --generations (the cap key, issue 48) and the shipped palm-down starts (an
+# extension, SPEC 13) alone
 "${APPDIR:-apps}/evolve" configs/simple_prim.cfg --generations 1 --set ga.population=2 \
   --set ga.elites=1 --set ga.parents=1 --set ga.success_genotypes=1 --out "$t/kt" > /dev/null 2>&1
 if [ "$(python3 -c 'import sys; sys.path.insert(0, "tools"); import keytable
-print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")" = "[('protocol', 'ga.population', '2', '100'), ('protocol', 'ga.elites', '1', '10'), ('protocol', 'ga.parents', '1', '20'), ('protocol', 'ga.success_genotypes', '1', '5'), ('extension', 'postures.reach_palm_down', 'true', 'false')]" ]; then
+print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")" = "[('protocol', 'ga.population', '2', '100'), ('protocol', 'ga.elites', '1', '10'), ('protocol', 'ga.parents', '1', '20'), ('protocol', 'ga.success_genotypes', '1', '5'), ('protocol', 'ga.max_generations', '1', '1500'), ('extension', 'postures.reach_palm_down', 'true', 'false')]" ]; then
   ok "keytable.departures: a run's config.ini away from the defaults in its --set keys and the shipped starts"
 else
   ko "keytable.departures" "$(python3 -c 'import sys; sys.path.insert(0, "tools"); import keytable

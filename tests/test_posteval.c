@@ -295,6 +295,44 @@ static void test_post_scripted_trials(void) {
   st_protocol_destroy(p);
 }
 
+/* st_scripted_main_trial_at: generation 0 is st_scripted_main_trial bit for bit; another
+ * generation runs that generation's trial (its object offset, individual 0's solver key: the
+ * numbers of st_trial_spec and st_trial_seed_key) and the reach still succeeds; out-of-range
+ * arguments are refused */
+static void test_scripted_trial_at(void) {
+  const stTestFixture *fx = st_test_fixture();
+  CU_ASSERT_PTR_NOT_NULL_FATAL(fx->robot);
+  char err[512] = "";
+  stProtocol *p = NULL;
+  CU_ASSERT_EQUAL_FATAL(st_protocol_create(&fx->cfg, &p, err, sizeof err), ST_OK);
+  stScripted *sc = NULL;
+  CU_ASSERT_EQUAL_FATAL(st_scripted_create(p, &sc, err, sizeof err), ST_OK);
+  stWorkspace ws = {NULL, NULL, NULL};
+  stTrialResult a, b, c, d;
+  const int reach1 = 1; /* reach k=1: the object nearest the body */
+  CU_ASSERT_EQUAL_FATAL(st_scripted_main_trial(p, &ws, sc, reach1, &a, NULL, NULL, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_scripted_main_trial_at(p, &ws, sc, 0, reach1, &b, NULL, NULL, err, sizeof err), ST_OK);
+  CU_ASSERT(a.success == 1 && b.success == 1);
+  CU_ASSERT(a.sum_s == b.sum_s && a.sum_p == b.sum_p && a.steps_run == b.steps_run);
+  CU_ASSERT_EQUAL(a.success_step, b.success_step);
+  /* generation 7's trial, as the library itself runs it with the scripted controller */
+  CU_ASSERT_EQUAL_FATAL(st_scripted_main_trial_at(p, &ws, sc, 7, reach1, &c, NULL, NULL, err, sizeof err), ST_OK);
+  stTrialSpec t0, t7;
+  st_trial_spec(p, ST_STAGE_MAIN, 0, reach1, &t0);
+  st_trial_spec(p, ST_STAGE_MAIN, 7, reach1, &t7);
+  CU_ASSERT(t0.obj[0] != t7.obj[0] || t0.obj[1] != t7.obj[1]);
+  const stController ctl = st_scripted_controller(sc);
+  CU_ASSERT_EQUAL_FATAL(st_trial_run_with(p, &ws, &t7, &ctl, st_trial_seed_key(p, 7, 0, reach1), &d,
+                                          NULL, NULL, err, sizeof err), ST_OK);
+  CU_ASSERT(c.success == 1 && c.sum_s == d.sum_s && c.steps_run == d.steps_run);
+  CU_ASSERT(c.sum_s != a.sum_s);
+  CU_ASSERT_EQUAL(st_scripted_main_trial_at(p, &ws, sc, -1, reach1, &c, NULL, NULL, err, sizeof err), ST_ERR_ARG);
+  CU_ASSERT_EQUAL(st_scripted_main_trial_at(p, &ws, sc, 0, ST_PRIM_TRIALS, &c, NULL, NULL, err, sizeof err), ST_ERR_ARG);
+  st_workspace_free(&ws);
+  st_scripted_destroy(sc);
+  st_protocol_destroy(p);
+}
+
 static stPostResult result(int success, int reached, const char *heard) {
   stPostResult r;
   memset(&r, 0, sizeof r);
@@ -563,6 +601,7 @@ void st_suite_posteval(void) {
   ST_ADD_TEST(test_post_words_and_conditions);
   ST_ADD_TEST(test_post_exclusion);
   ST_ADD_TEST(test_post_scripted_trials);
+  ST_ADD_TEST(test_scripted_trial_at);
   ST_ADD_TEST(test_post_summary_and_csv);
   ST_ADD_TEST(test_post_load_run);
   ST_ADD_TEST(test_post_load_population);

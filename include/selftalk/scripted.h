@@ -60,6 +60,14 @@ ST_API stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stS
                                 stTrialResult *r, stTraceFn trace, void *ctx, char *err,
                                 size_t errsz);
 
+/* The same trial with generation `generation`'s trial table (its object and target offsets,
+ * drawn starts when postures.vary_* draw them) and the solver key of that generation's
+ * individual 0, as evolution runs it: what a run's population was asked to solve in that
+ * generation (apps/scripted --generations). Generation 0 is st_scripted_main_trial. */
+stStatus st_scripted_main_trial_at(const stProtocol *p, stWorkspace *ws, stScripted *s,
+                                   int generation, int index, stTrialResult *r, stTraceFn trace,
+                                   void *ctx, char *err, size_t errsz);
+
 /* The integrated sequence (thesis §2.9.3, §2.10.1) as an integrated trial of the episode loop
  * (selftalk/integrated.h): reach posture k, object at scene position k and target t (0 or 1),
  * both without offsets; the caretaker names the primitive each step (silent at step 0; the

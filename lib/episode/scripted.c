@@ -510,15 +510,24 @@ stStatus st_scripted_main_trial(const stProtocol *p, stWorkspace *ws, stScripted
                                 stTrialResult *r, stTraceFn trace, void *ctx, char *err,
                                 size_t errsz) {
   ST_ASSERT(p && ws && s && r);
-  if (index < 0 || index >= ST_PRIM_TRIALS) {
+  return st_scripted_main_trial_at(p, ws, s, 0, index, r, trace, ctx, err, errsz);
+}
+
+stStatus st_scripted_main_trial_at(const stProtocol *p, stWorkspace *ws, stScripted *s,
+                                   int generation, int index, stTrialResult *r, stTraceFn trace,
+                                   void *ctx, char *err, size_t errsz) {
+  ST_ASSERT(p && ws && s && r);
+  if (index < 0 || index >= ST_PRIM_TRIALS || generation < 0) {
     memset(r, 0, sizeof *r);
-    st__errf(err, errsz, "scripted: trial %d (expected 0..%d)", index, ST_PRIM_TRIALS - 1);
+    st__errf(err, errsz, "scripted: trial %d of generation %d (expected 0..%d, generation >= 0)",
+             index, generation, ST_PRIM_TRIALS - 1);
     return ST_ERR_ARG;
   }
   stTrialSpec t;
-  st_trial_spec(p, ST_STAGE_MAIN, 0, index, &t);
-  const uint64_t key =
-      st_rng_keyed(st_config_rng_seed(&p->cfg), ST_RNG_TRIAL, 0, 0, (uint64_t)index).key;
+  st_trial_spec(p, ST_STAGE_MAIN, generation, index, &t);
+  /* individual 0's solver key of the generation (generation 0: the key the check has always
+   * used, st_rng_keyed(seed, ST_RNG_TRIAL, 0, 0, index)) */
+  const uint64_t key = st_trial_seed_key(p, generation, 0, index);
   const stController c = st_scripted_controller(s);
   return st_trial_run(p, ws, &t, &c, key, r, trace, ctx, err, errsz);
 }
