@@ -322,8 +322,8 @@ static void test_scripted_trial_at(void) {
   st_trial_spec(p, ST_STAGE_MAIN, 7, reach1, &t7);
   CU_ASSERT(t0.obj[0] != t7.obj[0] || t0.obj[1] != t7.obj[1]);
   const stController ctl = st_scripted_controller(sc);
-  CU_ASSERT_EQUAL_FATAL(st_trial_run_with(p, &ws, &t7, &ctl, st_trial_seed_key(p, 7, 0, reach1), &d,
-                                          NULL, NULL, err, sizeof err), ST_OK);
+  CU_ASSERT_EQUAL_FATAL(st_trial_run(p, &ws, &t7, &ctl, st_trial_seed_key(p, 7, 0, reach1), &d,
+                                     NULL, NULL, err, sizeof err), ST_OK);
   CU_ASSERT(c.success == 1 && c.sum_s == d.sum_s && c.steps_run == d.steps_run);
   CU_ASSERT(c.sum_s != a.sum_s);
   CU_ASSERT_EQUAL(st_scripted_main_trial_at(p, &ws, sc, -1, reach1, &c, NULL, NULL, err, sizeof err), ST_ERR_ARG);
