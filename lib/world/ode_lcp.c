@@ -416,12 +416,11 @@ static unsigned lsolve(const stLcp *s, unsigned nu, double *y, unsigned from) {
 
 /* ---- the reduction ------------------------------------------------------------------------ */
 
-/* The reduced problem of the bounded rows: S, b' (s->S, s->bx_b), their bounds and friction
- * indices (s->lh_b, s->findex_b); Y = L^-1 A_UB and z = L^-1 b_U kept for the way back.
- * Returns 0 when a friction row's normal row is unbounded (not ODE's contacts: not reduced). */
-static int reduce(stLcp *s, const double *A, unsigned skip, const double *bx, const double *lh,
-                  const int *findex, unsigned nu, unsigned nb) {
-  const unsigned *q = s->ord->order, *U = s->U, *B = s->B;
+/* The bounded rows' bounds and friction indices in the reduced problem's numbering (s->lh_b,
+ * s->findex_b), shared by every reduction. Returns 0 when a friction row's normal row is
+ * unbounded (not ODE's contacts: not reduced). */
+static int bounded_rows(stLcp *s, const double *lh, const int *findex, unsigned nu, unsigned nb) {
+  const unsigned *U = s->U, *B = s->B;
   for (unsigned r = 0; r < nb; r++) s->posb[B[r]] = r;
   for (unsigned k = 0; k < nu; k++) s->posb[U[k]] = (unsigned)-1;
   for (unsigned r = 0; r < nb; r++) {
@@ -431,6 +430,16 @@ static int reduce(stLcp *s, const double *A, unsigned skip, const double *bx, co
     s->lh_b[2 * r] = lh[2 * B[r]];
     s->lh_b[2 * r + 1] = lh[2 * B[r] + 1];
   }
+  return 1;
+}
+
+/* The reduced problem of the bounded rows: S, b' (s->S, s->bx_b), their bounds and friction
+ * indices (s->lh_b, s->findex_b); Y = L^-1 A_UB and z = L^-1 b_U kept for the way back.
+ * Returns 0 when a friction row's normal row is unbounded (not ODE's contacts: not reduced). */
+static int reduce(stLcp *s, const double *A, unsigned skip, const double *bx, const double *lh,
+                  const int *findex, unsigned nu, unsigned nb) {
+  const unsigned *q = s->ord->order, *U = s->U, *B = s->B;
+  if (!bounded_rows(s, lh, findex, nu, nb)) return 0;
   double *Y = s->Y, *z = s->z;
   for (unsigned r = 0; r < nb; r++) {
     double *y = Y + (size_t)r * nu;
@@ -788,15 +797,7 @@ static int blk_reduce(stLcp *s, const double *A, unsigned skip, const double *bx
                       const int *findex, unsigned nu, unsigned nb) {
   const stBlkOrder *o = s->bord;
   const unsigned ng = s->ng, *B = s->B;
-  for (unsigned r = 0; r < nb; r++) s->posb[B[r]] = r;
-  for (unsigned k = 0; k < nu; k++) s->posb[s->U[k]] = (unsigned)-1;
-  for (unsigned r = 0; r < nb; r++) {
-    const int f = findex ? findex[B[r]] : -1;
-    if (f >= 0 && s->posb[f] == (unsigned)-1) return 0;
-    s->findex_b[r] = f >= 0 ? (int)s->posb[f] : -1;
-    s->lh_b[2 * r] = lh[2 * B[r]];
-    s->lh_b[2 * r + 1] = lh[2 * B[r] + 1];
-  }
+  if (!bounded_rows(s, lh, findex, nu, nb)) return 0;
   double *Y = s->Y, *W = s->W;
   for (unsigned r = 0; r < nb; r++) { /* Y = L^-1 A_UB, a row of A_BU at a time */
     double *y = Y + (size_t)r * nu;
