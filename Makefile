@@ -155,6 +155,7 @@ $(FULL_SO): $(CORE_OBJ) $(SIM_OBJ) $(SO_EXPORTS)
 	  -o $@ $(CORE_OBJ) $(SIM_OBJ) $(LIBS_SIM) $(LIBS_CORE)
 
 # apps link the static library: they run from the source tree without LD_LIBRARY_PATH
+$(APPDIR)/bench: apps/press_plan.h
 $(APPDIR)/%: apps/%.c $(APP_COMMON) apps/app_common.h $(FULL_A) $(HEADERS)
 	@mkdir -p $(APPDIR)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(APP_COMMON) $(FULL_A) $(LIBS_SIM) $(LIBS_CORE)
@@ -237,8 +238,8 @@ $(BUILD)/ode_host_static: tests/link/ode_host.c $(FULL_A) $(HEADERS) | $(BUILD)/
 COMPARE := $(BUILD)/compare
 COMPARE_SET ?= dynamics.lcp=warm
 COMPARE_ARGS ?=
-$(COMPARE): tools/compare/compare.c $(FULL_A) $(HEADERS)
-	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -o $@ $< $(FULL_A) -lmujoco $(LIBS_SIM) $(LIBS_CORE)
+$(COMPARE): tools/compare/compare.c apps/press_plan.h $(FULL_A) $(HEADERS)
+	$(CC) $(CPPFLAGS_ALL) -Iapps $(CFLAGS_ALL) -o $@ $< $(FULL_A) -lmujoco $(LIBS_SIM) $(LIBS_CORE)
 
 compare-only: all $(COMPARE)
 	./$(COMPARE) --set '$(COMPARE_SET)' $(COMPARE_ARGS)

@@ -40,6 +40,7 @@
 #include <time.h>
 
 #include "app_common.h"
+#include "press_plan.h"
 #include "selftalk/evolve.h"
 #include "selftalk/scripted.h"
 #include "selftalk/trial.h"
@@ -342,13 +343,10 @@ static void figures_median(dynFigures *f, int reps) {
   for (int i = 0; i < 6; i++) qsort(a[i], (size_t)reps, sizeof(double), cmp_double);
 }
 
-/* the press trials: the scripted controller's grasp (lib/episode/scripted.c) from the four grasp
- * starts with the table kept on, recorded once per configuration (untimed): its commands and
- * the posture at the step its hand starts closing on the ball ("grasp:close", less PRESS_LEAD
- * steps). A timed press trial starts at rest from that posture and replays the next
- * PRESS_STEPS commands: the palm lowered over the ball, thumb and fingers closing and
- * squeezing it on the table. */
-enum { PRESS_LEAD = 2, PRESS_STEPS = 60, PRESS_RECORD = 40 + PRESS_STEPS };
+/* the press trials (apps/press_plan.h): the scripted grasp from the four grasp starts with the
+ * table kept on, recorded once per configuration (untimed); a timed press trial replays
+ * PRESS_STEPS of its commands from rest */
+enum { PRESS_STEPS = 60 };
 struct pressPlan {
   double q0[ST_NPOSTURE][ST_NDOF];
   double obj[ST_NPOSTURE][3], target[ST_NPOSTURE][3];
@@ -363,69 +361,12 @@ static void plan_trial(const pressPlan *plan, int k, const double **q0, const do
   *y = plan->y[k];
 }
 
-typedef struct pressRecorder {
-  stController inner;
-  stScripted *s;
-  int start;                            /* first step of grasp:close, -1 before */
-  double y[PRESS_RECORD][ST_NDOF], q[PRESS_RECORD][ST_NDOF];
-} pressRecorder;
-
-static void rec_reset(void *self, const stEpisodeSpec *e) {
-  pressRecorder *r = self;
-  r->start = -1;
-  if (r->inner.reset) r->inner.reset(r->inner.self, e);
-}
-
-static void rec_act(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
-                    double *out) {
-  pressRecorder *r = self;
-  r->inner.act(r->inner.self, w, q, in, step, out);
-  if (step < PRESS_RECORD) {
-    memcpy(r->y[step], out, sizeof r->y[step]);
-    memcpy(r->q[step], w->qhat, sizeof r->q[step]);
-  }
-  if (r->start < 0 && !strcmp(st_scripted_phase(r->s), "grasp:close")) r->start = step;
-}
-
 static void press_record(const stProtocol *p, const stDynDef *def, pressPlan *plan) {
   char err[1024];
-  stWorld *w = NULL;
-  stScripted *s = NULL;
-  if (st_world_create_dynamic(p->robot, &p->scene, def, &w, err, sizeof err) ||
-      st_scripted_create(p, &s, err, sizeof err))
-    app_die(prog, "press: %s", err);
-  stWorkspace ws = {NULL, w, NULL};
-  pressRecorder *r = malloc(sizeof *r);
-  if (!r) app_die(prog, "out of memory");
-  r->inner = st_scripted_controller(s);
-  r->s = s;
-  stController ctl = r->inner;
-  ctl.reset = rec_reset;
-  ctl.act = rec_act;
-  ctl.self = r;
-  benchScore sum = {0, 0, 0};
-  const stScorer sc = {NULL, sum_step, NULL, &sum};
-  for (int k = 0; k < ST_NPOSTURE; k++) {
-    stTrialSpec spec;
-    st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_GRASP * ST_NPOSTURE + k, &spec);
-    stEpisodeSpec ep;
-    stWords words;
-    st_trial_episode(p, &spec, (uint64_t)k, &ep, &words);
-    ep.steps = PRESS_RECORD;
-    ep.table_off_step = -1;
-    if (st_episode_run(p, &ws, &ep, &ctl, &words, &sc, NULL, NULL, err, sizeof err))
+  for (int k = 0; k < ST_NPOSTURE; k++)
+    if (st_press_plan(p, def, k, PRESS_STEPS, plan->q0[k], plan->obj[k], plan->target[k],
+                      plan->y[k][0], err, sizeof err))
       app_die(prog, "press: %s", err);
-    int s0 = r->start - PRESS_LEAD;
-    if (r->start < 0 || s0 + PRESS_STEPS > PRESS_RECORD) s0 = PRESS_RECORD - PRESS_STEPS;
-    if (s0 < 0) s0 = 0;
-    memcpy(plan->q0[k], r->q[s0], sizeof plan->q0[k]);
-    memcpy(plan->obj[k], ep.obj, sizeof plan->obj[k]);
-    memcpy(plan->target[k], ep.target, sizeof plan->target[k]);
-    memcpy(plan->y[k], r->y[s0], sizeof plan->y[k]);
-  }
-  free(r);
-  st_scripted_destroy(s);
-  st_world_destroy(w);
 }
 
 /* repetition r of one configuration: the random-network trials, then press, then held */

@@ -48,6 +48,7 @@
 #include "selftalk/scripted.h"
 #include "selftalk/trial.h"
 #include "selftalk/world.h"
+#include "press_plan.h"
 
 static const char *prog = "compare";
 enum { ST_COMPARE_MAXBODY = 256 };
@@ -405,7 +406,7 @@ static void check_model(const setup *su) {
 
 /* ---- the scenarios ------------------------------------------------------------------------ */
 
-enum { FREE = 0, PRESS, HELD, NSCEN, PRESS_LEAD = 2, PRESS_RECORD = 200 };
+enum { FREE = 0, PRESS, HELD, NSCEN };
 static const char *scen_name[NSCEN] = {"free", "press", "held"};
 
 /* one trial: start posture, object, commands per step (steps x ST_NDOF), the table's pairs
@@ -416,79 +417,14 @@ typedef struct trialPlan {
   int table;
 } trialPlan;
 
-typedef struct pressRec {
-  stController inner;
-  stScripted *s;
-  int start;
-  double (*y)[ST_NDOF], (*q)[ST_NDOF];
-} pressRec;
-
-static void rec_reset(void *self, const stEpisodeSpec *e) {
-  pressRec *r = self;
-  r->start = -1;
-  if (r->inner.reset) r->inner.reset(r->inner.self, e);
-}
-
-static void rec_act(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
-                    double *out) {
-  pressRec *r = self;
-  r->inner.act(r->inner.self, w, q, in, step, out);
-  if (step < PRESS_RECORD) {
-    memcpy(r->y[step], out, sizeof r->y[step]);
-    memcpy(r->q[step], w->qhat, sizeof r->q[step]);
-  }
-  if (r->start < 0 && !strcmp(st_scripted_phase(r->s), "grasp:close")) r->start = step;
-}
-
-static int rec_step(void *self, stTraceStep *ts) {
-  (void)self;
-  return ts->unstable ? ST_END_FAILURE : -1;
-}
-
-/* press, as apps/bench.c records it: the scripted grasp from grasp start k, from PRESS_LEAD
- * steps before its hand starts closing ("grasp:close") */
+/* press, as apps/bench.c plans it (apps/press_plan.h) */
 static void press_plan(const setup *su, int k, int steps, trialPlan *tp) {
-  const stProtocol *p = su->p;
   char err[1024];
-  stWorld *w = NULL;
-  stScripted *s = NULL;
-  if (st_world_create_dynamic(p->robot, &p->scene, &su->def, &w, err, sizeof err) ||
-      st_scripted_create(p, &s, err, sizeof err))
-    die("press: %s", err);
-  stWorkspace ws = {NULL, w, NULL};
-  pressRec *r = calloc(1, sizeof *r);
-  r->y = calloc(PRESS_RECORD, sizeof *r->y);
-  r->q = calloc(PRESS_RECORD, sizeof *r->q);
-  r->inner = st_scripted_controller(s);
-  r->s = s;
-  stController ctl = r->inner;
-  ctl.reset = rec_reset;
-  ctl.act = rec_act;
-  ctl.self = r;
-  const stScorer sc = {NULL, rec_step, NULL, NULL};
-  stTrialSpec spec;
-  st_trial_spec(p, ST_STAGE_MAIN, 0, ST_PRIM_GRASP * ST_NPOSTURE + k, &spec);
-  stEpisodeSpec ep;
-  stWords words;
-  st_trial_episode(p, &spec, (uint64_t)k, &ep, &words);
-  const int need = steps + 40 < PRESS_RECORD ? steps + 40 : PRESS_RECORD;
-  ep.steps = need;
-  ep.table_off_step = -1;
-  if (st_episode_run(p, &ws, &ep, &ctl, &words, &sc, NULL, NULL, err, sizeof err))
-    die("press: %s", err);
-  int s0 = r->start - PRESS_LEAD;
-  if (r->start < 0 || s0 + steps > need) s0 = need - steps;
-  if (s0 < 0) s0 = 0;
-  memcpy(tp->q0, r->q[s0], sizeof tp->q0);
-  memcpy(tp->obj, ep.obj, sizeof tp->obj);
-  memcpy(tp->target, ep.target, sizeof tp->target);
   tp->y = malloc(sizeof(double) * ST_NDOF * (size_t)steps);
-  for (int t = 0; t < steps; t++)
-    memcpy(tp->y + ST_NDOF * t, s0 + t < need ? r->y[s0 + t] : r->y[need - 1], sizeof(double) * ST_NDOF);
+  if (!tp->y) die("out of memory");
+  if (st_press_plan(su->p, &su->def, k, steps, tp->q0, tp->obj, tp->target, tp->y, err, sizeof err))
+    die("press: %s", err);
   tp->table = 1;
-  free(r->y), free(r->q), free(r);
-  st_scripted_destroy(s);
-  st_world_destroy(w);
 }
 
 static void make_plans(const setup *su, int steps, trialPlan plans[NSCEN][ST_NPOSTURE]) {
