@@ -5,9 +5,10 @@
 #   kinematic  one simple-prim trial (kinematic world) of a fixed genotype, step by step
 #   dynamic    one main-prim trial (ODE world) of a fixed genotype, step by step
 #   evolution  fitness.csv of 3 generations of simple-prim, seed 1 (GA, trials, scoring)
-# These three keep the thesis's keys (reach starts position only, the dense LCP) whatever the
-# shipped configs say, so that they stay the hashes every committed run was made under; two more
-# take the shipped configs as they are (palm-down reach starts, dynamics.lcp = schur; SPEC 13):
+# These three keep the keys every run committed before 2026-11-28 was made under (reach starts
+# position only, the dense LCP, the thumb at 0.5 in the grasp starts k = 2, 3) whatever the
+# shipped configs say; two more take the shipped configs as they are (palm-down reach starts,
+# dynamics.lcp = schur, grasp_partial_oppose 0.9; SPEC 13, docs/PROTOCOL.md):
 #   dynamic_shipped    the dynamic trial of configs/main_prim.cfg as shipped (schur contact)
 #   evolution_shipped  3 generations of configs/simple_prim.cfg as shipped (palm-down reaches)
 # A change of code, compiler, flags, libm or ODE that moves any of them by one bit is caught;
@@ -25,7 +26,8 @@ APPDIR=${APPDIR:-apps}
 BUILD=${BUILD:-build}
 FILE=tests/golden/golden.sha256
 NAMES="kinematic dynamic evolution dynamic_shipped evolution_shipped"
-THESIS_KEYS="--set postures.reach_palm_down=false --set dynamics.lcp=dense"
+THESIS_KEYS="--set postures.reach_palm_down=false --set postures.grasp_partial_oppose=0.5 --set dynamics.lcp=dense"
+KINEMATIC_KEYS="--set postures.reach_palm_down=false --set postures.grasp_partial_oppose=0.5"
 out="$BUILD/golden"
 mkdir -p "$out"
 tmp=$(mktemp -d)
@@ -36,14 +38,13 @@ produce() {
   case $1 in
     kinematic)
       "$APPDIR/replay" tests/golden/simple_prim.genome configs/simple_prim.cfg --trial 9 \
-        --generation 0 --exact --set postures.reach_palm_down=false --out "$out/kinematic.csv" > /dev/null ;;
+        --generation 0 --exact $KINEMATIC_KEYS --out "$out/kinematic.csv" > /dev/null ;;
     dynamic)
       "$APPDIR/replay" tests/golden/main_prim.genome configs/main_prim.cfg --trial 12 \
         --generation 0 --exact $THESIS_KEYS --out "$out/dynamic.csv" > /dev/null ;;
     evolution)
       "$APPDIR/evolve" configs/simple_prim.cfg --seed 1 --generations 3 --threads 2 \
-        --set postures.reach_palm_down=false \
-        --out "$tmp/evolution" > /dev/null && cp "$tmp/evolution/fitness.csv" "$out/evolution.csv" ;;
+        $KINEMATIC_KEYS --out "$tmp/evolution" > /dev/null && cp "$tmp/evolution/fitness.csv" "$out/evolution.csv" ;;
     dynamic_shipped)
       "$APPDIR/replay" tests/golden/main_prim.genome configs/main_prim.cfg --trial 12 \
         --generation 0 --exact --out "$out/dynamic_shipped.csv" > /dev/null ;;

@@ -39,6 +39,17 @@ else
   ko "--trace writes one row per step" "$(ls "$tmp/trace" 2>&1 | head -3)"
 fi
 
+# the shipped protocol's starts (configs/prims.cfg: palm-down reaches, the thumb opposed 0.9 in
+# all four grasp starts, schur): every trial achievable there too; the grasp starts with partly
+# flexed fingers, k = 2 and 3, are the ones the thumb's opposition changes
+"$APPDIR/scripted" --config configs/prims.cfg --threads 2 >"$tmp/shipped" 2>&1
+if grep -qE '^scripted: 24 passed, 0 failed$' "$tmp/shipped" &&
+   grep -qE '^trial main-prim grasp 2 success=1 steps=80$' "$tmp/shipped" &&
+   grep -qE '^trial main-prim grasp 3 success=1 steps=80$' "$tmp/shipped"; then
+  ok "the shipped configs' trials (configs/prims.cfg): 24 of 24"
+else
+  ko "the shipped configs' trials (configs/prims.cfg): 24 of 24" "$(grep -v 'success=1' "$tmp/shipped" | head -4)"
+fi
 
 # --generations: the main-prim trials over several generations' trial tables; generation 0's
 # are the plain run's (same success and steps), every reach trial of generations 0-2 succeeds

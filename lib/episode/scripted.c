@@ -25,6 +25,8 @@ typedef struct scriptedDef {
   double open_rise;      /* open: the palm rises at most this per step while the hand is closed */
   double grasp_oppose;   /* grasp: thumb opposition (it closes behind and under the ball) */
   double oppose_tol;     /* the thumb closes once its opposition is within this of its target */
+  double caged_flex;     /* a grasp start with the thumb opposed and the fingers flexed more than
+                            this already cages the ball: it closes from there (no approach) */
   double pre_x;          /* approach: ball centre this far ahead of the palm centre (the opposed
                             thumb clear behind it) ... */
   double pre_gap;        /* ... the palm this far above the ball top ... */
@@ -63,6 +65,7 @@ static const scriptedDef DEF = {
     .open_rise = 0.005,
     .grasp_oppose = 0.9,
     .oppose_tol = 0.1,
+    .caged_flex = 0.1,
     .pre_x = 0.045,
     .pre_gap = 0.015,
     .pre_thumb = 0.1,
@@ -106,6 +109,7 @@ struct stScripted {
   int grasp_phase;
   int grasp_steps;           /* steps of grasp performed since the reset */
   int gripped;               /* the grasp closed on the ball */
+  double close_ball[2];      /* ball frame (x, y) the palm closes to; grasp_x, 0 after an approach */
   double finger_hold, thumb_hold; /* flexion commands once in contact, else -1 */
   double close_obj[3];       /* object centre when closing started */
   double hold_ball[3];       /* ball frame once gripped ... */
@@ -260,6 +264,15 @@ static double grip_oppose(const stScripted *s, const stWorld *w) {
                                                 s->def.hand_gain);
 }
 
+/* The hand starts around the ball: thumb opposed behind it, fingers partly flexed in front
+ * (postures.grasp_partial_oppose 0.9, the shipped configs). The approach's re-placing would flex
+ * the thumb against the ball and kick it out of the cage (20 cm in 20 steps), so the palm goes
+ * straight down from where it is and the hand closes. */
+static int caged_start(const stScripted *s, const double *q) {
+  return q[ST_DOF_THUMB_OPPOSE] >= s->def.grasp_oppose - s->def.oppose_tol &&
+         q[ST_DOF_FINGER_FLEX] > s->def.caged_flex;
+}
+
 /* Approach: the palm goes over the ball, palm down, the ball pre_x ahead along the fingers,
  * while the thumb turns to opposition behind it; the thumb is flexed just enough for its tip
  * to clear the table once the palm is down, and the palm stays high while the tip would not
@@ -276,6 +289,11 @@ static void do_grasp(stScripted *s, const stWorld *w, double *y) {
   double b[3], qg[ST_NDOF];
   ball_in_palm(s, w, b);
   s->grasp_steps++;
+  if (s->grasp_phase == GR_APPROACH && s->grasp_steps == 1 && caged_start(s, q)) {
+    memcpy(s->close_obj, w->obj, sizeof s->close_obj);
+    s->close_ball[0] = b[0], s->close_ball[1] = b[1]; /* down onto the ball from where it is */
+    s->grasp_phase = GR_CLOSE;
+  }
   if (s->grasp_phase == GR_APPROACH) {
     const double qo = q[ST_DOF_THUMB_OPPOSE];
     const double o_step = 1.5 * r->max_velocity * r->dt / (s->range_deg[ST_DOF_THUMB_OPPOSE] * ST_DEG);
@@ -297,7 +315,7 @@ static void do_grasp(stScripted *s, const stWorld *w, double *y) {
     }
   }
   if (s->grasp_phase == GR_CLOSE) {
-    const double want[3] = {D->grasp_x, 0.0, rad + D->grasp_gap};
+    const double want[3] = {s->close_ball[0], s->close_ball[1], rad + D->grasp_gap};
     solve(s, w, want, s->close_obj, qg);
     arm_command(s, w, qg, D->gain, y);
     if (s->thumb_hold < 0.0 && w->contacts.touch_object[ST_TOUCH_THUMB])
@@ -403,6 +421,7 @@ static void scripted_reset(void *self, const stEpisodeSpec *e) {
   s->have_prev = 0;
   s->grasp_phase = GR_APPROACH;
   s->grasp_steps = 0;
+  s->close_ball[0] = s->def.grasp_x, s->close_ball[1] = 0.0;
   s->gripped = 0;
   s->finger_hold = s->thumb_hold = -1.0;
   s->move_phase = MV_SECURE;
