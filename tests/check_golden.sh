@@ -8,8 +8,8 @@
 # These three keep the keys every run committed before 2026-11-28 was made under (reach starts
 # position only, the dense LCP, the thumb at 0.5 in the grasp starts k = 2, 3) whatever the
 # shipped configs say; two more take the shipped configs as they are (palm-down reach starts,
-# dynamics.lcp = schur, grasp_partial_oppose 0.9; SPEC 13, docs/PROTOCOL.md):
-#   dynamic_shipped    the dynamic trial of configs/main_prim.cfg as shipped (schur contact)
+# dynamics.lcp = warm, grasp_partial_oppose 0.9; SPEC 13, docs/PROTOCOL.md):
+#   dynamic_shipped    the dynamic trial of configs/main_prim.cfg as shipped (warm contact)
 #   evolution_shipped  3 generations of configs/simple_prim.cfg as shipped (palm-down reaches)
 # A change of code, compiler, flags, libm or ODE that moves any of them by one bit is caught;
 # runs made on machines whose hashes agree can be pooled.

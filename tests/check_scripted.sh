@@ -40,7 +40,7 @@ else
 fi
 
 # the shipped protocol's starts (configs/prims.cfg: palm-down reaches, the thumb opposed 0.9 in
-# all four grasp starts, schur): every trial achievable there too; the grasp starts with partly
+# all four grasp starts, warm): every trial achievable there too; the grasp starts with partly
 # flexed fingers, k = 2 and 3, are the ones the thumb's opposition changes
 "$APPDIR/scripted" --config configs/prims.cfg --threads 2 >"$tmp/shipped" 2>&1
 if grep -qE '^scripted: 24 passed, 0 failed$' "$tmp/shipped" &&
