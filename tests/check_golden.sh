@@ -6,9 +6,9 @@
 #   dynamic    one main-prim trial (ODE world) of a fixed genotype, step by step
 #   evolution  fitness.csv of 3 generations of simple-prim, seed 1 (GA, trials, scoring)
 # These three keep the keys every run committed before 2026-11-28 was made under (reach starts
-# position only, the dense LCP, the thumb at 0.5 in the grasp starts k = 2, 3) whatever the
-# shipped configs say; two more take the shipped configs as they are (palm-down reach starts,
-# dynamics.lcp = warm, grasp_partial_oppose 0.9; SPEC 13, docs/PROTOCOL.md):
+# position only, the dense LCP, the thumb at 0.5 in the grasp starts k = 2, 3, run.rng_seed
+# plain) whatever the shipped configs say; two more take the shipped configs as they are (palm-down reach starts,
+# dynamics.lcp = warm, grasp_partial_oppose 0.9, run.rng_seed apart; SPEC 13, docs/PROTOCOL.md):
 #   dynamic_shipped    the dynamic trial of configs/main_prim.cfg as shipped (warm contact)
 #   evolution_shipped  3 generations of configs/simple_prim.cfg as shipped (palm-down reaches)
 # A change of code, compiler, flags, libm or ODE that moves any of them by one bit is caught;
@@ -26,8 +26,8 @@ APPDIR=${APPDIR:-apps}
 BUILD=${BUILD:-build}
 FILE=tests/golden/golden.sha256
 NAMES="kinematic dynamic evolution dynamic_shipped evolution_shipped"
-THESIS_KEYS="--set postures.reach_palm_down=false --set postures.grasp_partial_oppose=0.5 --set dynamics.lcp=dense"
-KINEMATIC_KEYS="--set postures.reach_palm_down=false --set postures.grasp_partial_oppose=0.5"
+THESIS_KEYS="--set postures.reach_palm_down=false --set postures.grasp_partial_oppose=0.5 --set run.rng_seed=plain --set dynamics.lcp=dense"
+KINEMATIC_KEYS="--set postures.reach_palm_down=false --set postures.grasp_partial_oppose=0.5 --set run.rng_seed=plain"
 out="$BUILD/golden"
 mkdir -p "$out"
 tmp=$(mktemp -d)

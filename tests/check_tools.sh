@@ -296,12 +296,12 @@ generated csvschema "the library's tables"
 generated keytable "the library's key table (its tiers and defaults)"
 gen="${BUILD:-build}/csvschema"
 # its defaults read as config.ini writes them: a run of the shipped simple-prim config departs in
-# its --set keys, its --generations (the cap key, issue 48) and the shipped palm-down starts (an
-# extension, SPEC 13) alone
+# its --set keys, its --generations (the cap key, issue 48), the shipped grasp starts' thumb (our
+# reading, protocol tier), the shipped palm-down starts and keyed streams (extensions) alone
 "${APPDIR:-apps}/evolve" configs/simple_prim.cfg --generations 1 --set ga.population=2 \
   --set ga.elites=1 --set ga.parents=1 --set ga.success_genotypes=1 --out "$t/kt" > /dev/null 2>&1
 if [ "$(python3 -c 'import sys; sys.path.insert(0, "tools"); import keytable
-print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")" = "[('protocol', 'ga.population', '2', '100'), ('protocol', 'ga.elites', '1', '10'), ('protocol', 'ga.parents', '1', '20'), ('protocol', 'ga.success_genotypes', '1', '5'), ('protocol', 'ga.max_generations', '1', '1500'), ('extension', 'postures.reach_palm_down', 'true', 'false')]" ]; then
+print(keytable.departures(sys.argv[1]))' "$t/kt/config.ini")" = "[('protocol', 'ga.population', '2', '100'), ('protocol', 'ga.elites', '1', '10'), ('protocol', 'ga.parents', '1', '20'), ('protocol', 'ga.success_genotypes', '1', '5'), ('protocol', 'ga.max_generations', '1', '1500'), ('protocol', 'postures.grasp_partial_oppose', '0.90000000000000002', '0.5'), ('extension', 'run.rng_seed', 'apart', 'plain'), ('extension', 'postures.reach_palm_down', 'true', 'false')]" ]; then
   ok "keytable.departures: a run's config.ini away from the defaults in its --set keys and the shipped starts"
 else
   ko "keytable.departures" "$(python3 -c 'import sys; sys.path.insert(0, "tools"); import keytable
