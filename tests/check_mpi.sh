@@ -197,7 +197,10 @@ SHIM="$PWD/$BUILD/fault_shim.so"
 start_run() { # DIR LOG NP ARGS...
   local dir=$1 log=$2; shift 2
   touch "$tmp/hold"
-  LD_PRELOAD="$SHIM" ST_FAULT_HOLD="$tmp/hold" mpi "$@" --out "$dir" > "$log" 2>&1 &
+  # 10 s between the launcher's SIGTERM and its SIGKILL: OpenMPI's 1 s ended rank 0 before it
+  # could say why on a box busy with four evolutions (the killed worker, 2026-11-28)
+  LD_PRELOAD="$SHIM" ST_FAULT_HOLD="$tmp/hold" OMPI_MCA_odls_base_sigkill_timeout=10 \
+    mpi "$@" --out "$dir" > "$log" 2>&1 &
   bg=$!
   wait_for 900 "$bg" test -e "$dir/checkpoint"
 }

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Every committed primitive run (data/evolved/prims_s<N>/, and the chain stage's continuations
 # of them, data/evolved/chain_s<N>/; the primitive runs of the study's palm-down starts,
-# pd_prims_s<N>/, issue 46) holds what its fitness.csv says: the best genotype of its
-# final population, replayed from the simulation with the run's own config.ini on the thesis's
-# 16 main-prim trials (with the offsets of its last generation; a chain run's hand-over, varied
-# and chained trials are not among them), solves all 16 (issue 12, item 4; issue 23, item 4).
+# pd_prims_s<N>/, and of the protocol as shipped since 2026-11-28, prims46_s<N>/; issue 46)
+# holds what its fitness.csv says: the best genotype of its final population, replayed from the
+# simulation with the run's own config.ini on the thesis's 16 main-prim trials (with the offsets
+# of its last generation; a chain run's hand-over, varied and chained trials are not among
+# them), solves all 16 (issue 12, item 4; issue 23, item 4).
 # A run directory without its three files is an error; snapshots of runs still going
 # (*_run/, resumable) are not finished runs and are left out.
 set -uo pipefail
@@ -13,7 +14,7 @@ CHECK=check_populations
 source "$(dirname "$0")/check_lib.sh"
 
 runs=()
-for d in data/evolved/prims_s*/ data/evolved/chain_s*/ data/evolved/pd_prims_s*/; do
+for d in data/evolved/prims_s*/ data/evolved/chain_s*/ data/evolved/pd_prims_s*/ data/evolved/prims46_s*/; do
   [ -d "$d" ] || continue
   case "$d" in *_run/) ;; *) runs+=("$d") ;; esac
 done
