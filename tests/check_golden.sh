@@ -5,9 +5,9 @@
 #   kinematic  one simple-prim trial (kinematic world) of a fixed genotype, step by step
 #   dynamic    one main-prim trial (ODE world) of a fixed genotype, step by step
 #   evolution  fitness.csv of 3 generations of simple-prim, seed 1 (GA, trials, scoring)
-# These three keep the keys every run committed before 2026-11-28 was made under (reach starts
-# position only, the dense LCP, the thumb at 0.5 in the grasp starts k = 2, 3, run.rng_seed
-# plain) whatever the shipped configs say; two more take the shipped configs as they are (palm-down reach starts,
+# These three keep the keys' defaults, under which the older committed runs were made (reach
+# starts position only, the dense LCP, the thumb at 0.5 in the grasp starts k = 2, 3,
+# run.rng_seed plain), whatever the shipped configs say; two more take the shipped configs as they are (palm-down reach starts,
 # dynamics.lcp = warm, grasp_partial_oppose 0.9, run.rng_seed apart; SPEC 13, docs/PROTOCOL.md):
 #   dynamic_shipped    the dynamic trial of configs/main_prim.cfg as shipped (warm contact)
 #   evolution_shipped  3 generations of configs/simple_prim.cfg as shipped (palm-down reaches)

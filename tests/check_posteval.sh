@@ -218,6 +218,15 @@ if [ $rc1 = 0 ] && [ $rc3 = 0 ] && check_files robustness "$tmp/r1" selftalk ST-
 else ko "robustness" "$(tail -2 "$tmp/r1.err")"; fi
 if same_out "$tmp/r1" "$tmp/r2"; then ok "robustness: 1 and 2 threads give byte-identical files"
 else ko "robustness threads"; fi
+# a run made with other stream keys and solver than the test's is tested, and the test says how
+# to repeat one made with the run's keys (the shipped configs changed them on 2026-11-28)
+if ! grep -q "note:" "$tmp/r1.err" &&
+   "$PE" robustness configs/integrated_stct.cfg "$tmp/stct-s1" "${rob[@]}" --set run.rng_seed=plain \
+     --set dynamics.lcp=schur --out "$tmp/rk" > /dev/null 2> "$tmp/rk.err" &&
+   grep -qxF "posteval: note: $tmp/stct-s1 was made with run.rng_seed = apart, the test runs with plain (its own trials; --set run.rng_seed=apart repeats a test made with the run's)" "$tmp/rk.err" &&
+   grep -qxF "posteval: note: $tmp/stct-s1 was made with dynamics.lcp = warm, the test runs with schur (its own trials; --set dynamics.lcp=warm repeats a test made with the run's)" "$tmp/rk.err"; then
+  ok "robustness: a run made with other keys than the test's (run.rng_seed, dynamics.lcp) is named with the keys that repeat it"
+else ko "robustness: other keys noted" "$(cat "$tmp/rk.err" | head -3)"; fi
 
 # ---- generalisation on a 3 x 3 grid, 1 repetition, 30 steps: stct-s1 as trained (no autonomous
 # success in its last generation: excluded) and a copy whose last row claims a self-talk

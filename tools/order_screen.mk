@@ -3,7 +3,8 @@
 # assembled population under each order in ORDERS (integrated.trial_order), then the robustness
 # test (40 trials, the best of the last generation; the test's own table, whatever the order), and
 # one table: successes by type, the first generation with an autonomous bonus and with all of it,
-# the types succeeded autonomously. The runs use the shipped configs (palm-down starts, schur).
+# the types succeeded autonomously. The runs use the shipped configs (palm-down starts; since
+# 2026-11-28 also warm and rng_seed apart, which the screen of issue 47 gave with EVOLVE_ARGS).
 # Every job resumes where it stopped (evolve --resume, posteval --resume).
 #
 #   make -f tools/order_screen.mk [SEEDS='1 2 3'] [CONDS='stct ct'] [ORDERS='mod4 pairs'] [GENS=100]

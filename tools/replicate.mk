@@ -75,9 +75,10 @@ $(error PROTOCOL=$(PROTOCOL): expected chain or thesis)
 endif
 
 # SET: settings (section.key=value, space-separated) for every simulated step, evolution and
-# post-evaluation alike, e.g. SET=postures.reach_palm_down=0 (the configs ship the study's palm-down
-# reach starts and dynamics.lcp = schur; docs/PROTOCOL.md, "The study's starts and solver"; "Why open is
-# rarely jumped"): each step's own ..._ARGS come first, then these
+# post-evaluation alike, e.g. SET=postures.reach_palm_down=0 (the configs ship the study's
+# protocol: palm-down reach starts, the grasp thumb at 0.9, run.rng_seed = apart, dynamics.lcp =
+# warm; docs/PROTOCOL.md, "The study's starts and solver"): each step's own ..._ARGS come first,
+# then these
 SET ?=
 SET_BAD := $(strip $(foreach s,$(SET),$(if $(findstring =,$(s)),,$(s))))
 ifneq ($(SET_BAD),)

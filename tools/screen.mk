@@ -21,7 +21,7 @@ OUT ?= runs/screen
 THREADS ?= 0
 PYTHON ?= /usr/bin/python3
 # SET: settings for the screen's evolution and both its integration tests alike (as
-# tools/replicate.mk's), e.g. SET='postures.reach_palm_down=1 dynamics.lcp=schur': a candidate's
+# tools/replicate.mk's), e.g. SET='postures.reach_palm_down=0 dynamics.lcp=dense': a candidate's
 # starts are then those of its test too. A screen's directory is named after SET's values, so
 # screens of one candidate under other settings never share (and resume) one directory.
 SET ?=

@@ -25,8 +25,10 @@ typedef struct scriptedDef {
   double open_rise;      /* open: the palm rises at most this per step while the hand is closed */
   double grasp_oppose;   /* grasp: thumb opposition (it closes behind and under the ball) */
   double oppose_tol;     /* the thumb closes once its opposition is within this of its target */
-  double caged_flex;     /* a grasp start with the thumb opposed and the fingers flexed more than
-                            this already cages the ball: it closes from there (no approach) */
+  double caged_flex;     /* a grasp start with the thumb opposed, the fingers flexed more than
+                            this ... */
+  double caged_xy;       /* ... and the ball this close to under the palm centre already cages
+                            it: the hand closes from there (no approach) */
   double pre_x;          /* approach: ball centre this far ahead of the palm centre (the opposed
                             thumb clear behind it) ... */
   double pre_gap;        /* ... the palm this far above the ball top ... */
@@ -66,6 +68,7 @@ static const scriptedDef DEF = {
     .grasp_oppose = 0.9,
     .oppose_tol = 0.1,
     .caged_flex = 0.1,
+    .caged_xy = 0.01,
     .pre_x = 0.045,
     .pre_gap = 0.015,
     .pre_thumb = 0.1,
@@ -264,19 +267,23 @@ static double grip_oppose(const stScripted *s, const stWorld *w) {
                                                 s->def.hand_gain);
 }
 
-/* The hand starts around the ball: thumb opposed behind it, fingers partly flexed in front
- * (postures.grasp_partial_oppose 0.9, the shipped configs). The approach's re-placing would flex
- * the thumb against the ball and kick it out of the cage (20 cm in 20 steps), so the palm goes
- * straight down from where it is and the hand closes. */
-static int caged_start(const stScripted *s, const double *q) {
+/* The hand starts around the ball: thumb opposed behind it, fingers partly flexed in front, the
+ * ball under the palm centre (postures.grasp_partial_oppose 0.9, the shipped configs). The
+ * approach's re-placing would flex the thumb against the ball and kick it out of the cage (17 cm
+ * in 20 steps), so the palm closes onto the ball along its normal from where it is and the hand
+ * closes. The chain stage's drawn starts (palm moved and tilted) close so when the ball is within
+ * caged_xy of the centre: generations 0-59 of configs/chain_prim.cfg, grasp k=2 56 and k=3 43
+ * of 60 (47 and 35 with any offset, 38 and 37 within 5 mm; the thumb at 0.5: 58 and 55). */
+static int caged_start(const stScripted *s, const double *q, const double b[3]) {
   return q[ST_DOF_THUMB_OPPOSE] >= s->def.grasp_oppose - s->def.oppose_tol &&
-         q[ST_DOF_FINGER_FLEX] > s->def.caged_flex;
+         q[ST_DOF_FINGER_FLEX] > s->def.caged_flex && hypot(b[0], b[1]) < s->def.caged_xy;
 }
 
 /* Approach: the palm goes over the ball, palm down, the ball pre_x ahead along the fingers,
  * while the thumb turns to opposition behind it; the thumb is flexed just enough for its tip
  * to clear the table once the palm is down, and the palm stays high while the tip would not
- * pass beside the ball. Close: the palm moves to put the ball (where it was) grasp_x ahead;
+ * pass beside the ball (from a caged start, none: caged_start). Close: the palm moves to put
+ * the ball (where it was) grasp_x ahead, or from a caged start where it is, grasp_gap below;
  * thumb and fingers close at full speed; each is held `squeeze` beyond its contact flexion
  * (its motor then pushes with its bounded torque). Hold: once both touch and the hand is
  * still, the palm keeps the ball where it is and the thumb's command rises while the ball
@@ -289,7 +296,7 @@ static void do_grasp(stScripted *s, const stWorld *w, double *y) {
   double b[3], qg[ST_NDOF];
   ball_in_palm(s, w, b);
   s->grasp_steps++;
-  if (s->grasp_phase == GR_APPROACH && s->grasp_steps == 1 && caged_start(s, q)) {
+  if (s->grasp_phase == GR_APPROACH && s->grasp_steps == 1 && caged_start(s, q, b)) {
     memcpy(s->close_obj, w->obj, sizeof s->close_obj);
     s->close_ball[0] = b[0], s->close_ball[1] = b[1]; /* down onto the ball from where it is */
     s->grasp_phase = GR_CLOSE;

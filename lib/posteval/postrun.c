@@ -146,6 +146,31 @@ static stStatus same_condition(const char *dir, const stConfig *cfg, char *err, 
   return ST_OK;
 }
 
+/* A run made with another keying of its streams or another LCP solver than the test's config is
+ * still tested (a test's trials are its own, drawn from the test's keys), but a test made before
+ * the shipped configs changed these keys (2026-11-28) is repeated only with the run's: say so. */
+static void note_other_keys(const char *dir, const stConfig *cfg, FILE *f) {
+  if (!f) return;
+  char path[ST_PATH_MAX];
+  snprintf(path, sizeof path, "%s/config.ini", dir);
+  stConfig rc;
+  st_config_default(&rc);
+  char e[1024];
+  if (st_config_load(path, &rc, e, sizeof e)) return; /* same_condition has said why */
+  static const char *const keys[][2] = {{"run", "rng_seed"}, {"dynamics", "lcp"}};
+  const int have[] = {rc.run_rng_seed, rc.dynamics_lcp};
+  const int want[] = {cfg->run_rng_seed, cfg->dynamics_lcp};
+  for (int i = 0; i < (int)(sizeof have / sizeof have[0]); i++) {
+    if (have[i] == want[i]) continue;
+    char h[64], w[64];
+    choice_name(keys[i][0], keys[i][1], have[i], h, sizeof h);
+    choice_name(keys[i][0], keys[i][1], want[i], w, sizeof w);
+    fprintf(f, "posteval: note: %s was made with %s.%s = %s, the test runs with %s (its own "
+            "trials; --set %s.%s=%s repeats a test made with the run's)\n", dir, keys[i][0],
+            keys[i][1], h, w, keys[i][0], keys[i][1], h);
+  }
+}
+
 /* the best of the last generation: best.genome's last record and its generation */
 static stStatus last_best(const char *dir, int ngenes, stGenome *g, int *generation, char *err,
                           size_t errsz) {
@@ -257,6 +282,7 @@ static stStatus load_individuals(postRun *R, char *err, size_t errsz) {
                       ? st_post_load_population(d->inputs[i], per, ngenes, &R->ind[i * per], err, errsz)
                       : st_post_load_run(d->inputs[i], R->cfg, exclusion, &R->ind[i], err, errsz);
     if (st) return st;
+    if (!populations) note_other_keys(d->inputs[i], R->cfg, d->progress);
     for (int k = 0; k < per; k++) R->ind[i * per + k].run = i; /* the input's position */
     for (int j = 0; j < i * per; j++)
       if (!strcmp(R->ind[j].run_label, R->ind[i * per].run_label))
