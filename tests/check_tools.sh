@@ -98,7 +98,8 @@ grep -qF "simple-prim: not complete after 3 generations (at most 5 of the 9 geno
   grep -qF "main-prim: complete at generation 6 (9 genotypes" <<<"$out" &&
   ok "run_report: the threshold of config.ini" || ko "run_report threshold: $out"
 # and how the run departs from the thesis's protocol, tier by tier (tools/keytable.py): the
-# threshold is the protocol's; a seed is the run's own, not a departure; free motion is speed
+# threshold is the protocol's (a real in config.ini's %.17g shown in its shortest digits); a
+# seed is the run's own, not a departure; free motion is speed
 printf '[run]
 seed = 4
 threads = 2
@@ -106,10 +107,12 @@ threads = 2
 success_genotypes = 9
 [stage]
 handover = true
+[postures]
+grasp_partial_oppose = 0.90000000000000002
 ' > "$t/a/config.ini"
 out=$("$PY" tools/run_report.py "$t/a" --no-plot 2>&1)
 grep -qxF "  how it departs from the thesis's protocol (config.ini, each key's default after it):" <<<"$out" &&
-  grep -qxF "    protocol: ga.success_genotypes = 9 (5)" <<<"$out" &&
+  grep -qxF "    protocol: ga.success_genotypes = 9 (5), postures.grasp_partial_oppose = 0.9 (0.5)" <<<"$out" &&
   grep -qxF "    extension: stage.handover = true (false)" <<<"$out" &&
   grep -qxF "    speed (the same results): run.threads = 2 (0)" <<<"$out" && ! grep -q "run.seed" <<<"$out" &&
   ok "run_report: the keys away from the thesis's protocol, by tier" || ko "run_report departures: $out"

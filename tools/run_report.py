@@ -87,6 +87,16 @@ def protocol_line(run_dir):
     return f"reach starts {starts} (postures.reach_palm_down); contact {contact}"
 
 
+def shortest(value):
+    """a real as config.ini writes it (%.17g: 0.90000000000000002) in the fewest digits that read
+    back to it (0.9); any other value as it is"""
+    try:
+        x = float(value)
+    except ValueError:
+        return value
+    return repr(x) if "." in value or "e" in value.lower() else value
+
+
 def departure_lines(run_dir):
     """how the run departs from the thesis's protocol, one line per tier (keytable.departures of
     its config.ini); nothing without a config.ini"""
@@ -98,7 +108,7 @@ def departure_lines(run_dir):
         return ["the thesis's protocol: no key away from it (config.ini)"]
     lines = ["how it departs from the thesis's protocol (config.ini, each key's default after it):"]
     for tier in keytable.TIERS:
-        keys = [f"{k} = {v} ({d})" for t, k, v, d in found if t == tier]
+        keys = [f"{k} = {shortest(v)} ({d})" for t, k, v, d in found if t == tier]
         if keys:
             what = " (the same results)" if tier == "speed" else ""
             lines.append(f"  {tier}{what}: " + ", ".join(keys))
