@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every committed primitive run (data/evolved/prims_s<N>/, and the chain stage's continuations
 # of them, data/evolved/chain_s<N>/; the primitive runs of the study's palm-down starts,
-# pd_prims_s<N>/, and of the protocol as shipped since 2026-11-28, prims46_s<N>/; issue 46)
+# pd_prims_s<N>/, and of the protocol as shipped since 2026-11-28, prims46_s<N>/ and their chain
+# stages chain46_s<N>/; issue 46)
 # holds what its fitness.csv says: the best genotype of its final population, replayed from the
 # simulation with the run's own config.ini on the thesis's 16 main-prim trials (with the offsets
 # of its last generation; a chain run's hand-over, varied and chained trials are not among
@@ -16,7 +17,7 @@ CHECK=check_populations
 source "$(dirname "$0")/check_lib.sh"
 
 runs=()
-for d in data/evolved/prims_s*/ data/evolved/chain_s*/ data/evolved/pd_prims_s*/ data/evolved/prims46_s*/; do
+for d in data/evolved/prims_s*/ data/evolved/chain_s*/ data/evolved/pd_prims_s*/ data/evolved/prims46_s*/ data/evolved/chain46_s*/; do
   [ -d "$d" ] || continue
   case "$d" in *_run/) ;; *) runs+=("$d") ;; esac
 done
