@@ -2,12 +2,12 @@
 # Every committed primitive run (data/evolved/prims_s<N>/, and the chain stage's continuations
 # of them, data/evolved/chain_s<N>/; the primitive runs of the study's palm-down starts,
 # pd_prims_s<N>/, and of the protocol as shipped since 2026-11-28, prims46_s<N>/ and their chain
-# stages chain46_s<N>/; issue 46)
-# holds what its fitness.csv says: the best genotype of its final population, replayed from the
-# simulation with the run's own config.ini on the thesis's 16 main-prim trials (with the offsets
-# of its last generation; a chain run's hand-over, varied and chained trials are not among
-# them), solves all 16, or, when the best by fitness is not among a completed stage's solvers,
-# the final population holds the genotypes that solve all 16 in the number fitness.csv records (issue 12, item 4; issue 23, item 4).
+# stages chain46_s<N>/; issue 46) holds what its fitness.csv says: the best genotype of its
+# final population, replayed from the simulation with the run's own config.ini on the thesis's
+# 16 main-prim trials (with the offsets of its last generation; a chain run's hand-over, varied
+# and chained trials are not among them), solves all 16, or, when the best by fitness is not
+# among a completed stage's solvers, the final population holds as many genotypes solving all 16
+# as fitness.csv records (issue 12, item 4; issue 23, item 4).
 # A run directory without its three files is an error; snapshots of runs still going
 # (*_run/, resumable) are not finished runs and are left out.
 set -uo pipefail

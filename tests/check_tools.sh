@@ -412,8 +412,9 @@ if "$PYT" tests/tools_sweep.py "$t/sweep" > "$t/sweep.out" 2>&1; then
   ok "malformed CSVs: $(tail -1 "$t/sweep.out" | sed 's/^tools_sweep: //'): exit 2 with FILE:LINE, no traceback"
 else ko "malformed CSVs" "$(head -c 3000 "$t/sweep.out")"; fi
 # run_independence streams (issue 47): the integrated runs' draws across seeds 1-5 of the
-# palm-down study, as the library keys them: with run.rng_seed = plain (the default, the key of the runs committed before study46b) two
-# keys meet, seed 4's and seed 5's generation-0 offsets and new genes; with apart none
+# palm-down study, as the library keys them: with run.rng_seed = plain (the default, the key of
+# the runs committed before study46b) two keys meet, seed 4's and seed 5's generation-0 offsets
+# and new genes; with apart none
 ri="${BUILD:-build}/run_independence"
 cfg=data/evolved/study_palm_down/int-stct-s1/config.ini
 if out=$("$ri" streams "$cfg" 2>&1) &&

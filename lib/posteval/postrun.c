@@ -112,24 +112,20 @@ static void choice_name(const char *section, const char *name, int v, char *buf,
   else snprintf(buf, n, "%s", v ? "true" : "false");
 }
 
-/* the run's config.ini has the condition of cfg (Table 2.1's keys) and its reach starts (the
- * post-evaluations start from the integrated stage's reach postures) */
-static stStatus same_condition(const char *dir, const stConfig *cfg, char *err, size_t errsz) {
+/* the run's config.ini (dir's, read into rc) has the condition of cfg (Table 2.1's keys) and its
+ * reach starts (the post-evaluations start from the integrated stage's reach postures) */
+static stStatus same_condition(const char *dir, const stConfig *cfg, const stConfig *rc,
+                               char *err, size_t errsz) {
   char path[ST_PATH_MAX];
   snprintf(path, sizeof path, "%s/config.ini", dir);
-  stConfig rc;
-  st_config_default(&rc);
-  char e[1024];
-  if (st_config_load(path, &rc, e, sizeof e))
-    return st__errf(err, errsz, "integrated run %s: %s", dir, e), ST_ERR_IO;
   static const char *const keys[][2] = {
       {"stage", "stages"},           {"network", "arch"},       {"integrated", "words_even"},
       {"integrated", "words_odd"},   {"integrated", "fitness_even"}, {"integrated", "fitness_odd"},
       {"integrated", "first_generation"}, {"postures", "reach_palm_down"}};
-  const int have[] = {rc.stage_stages, rc.network_arch, rc.integrated_words_even,
-                      rc.integrated_words_odd, rc.integrated_fitness_even,
-                      rc.integrated_fitness_odd, rc.integrated_first_generation,
-                      rc.postures_reach_palm_down};
+  const int have[] = {rc->stage_stages, rc->network_arch, rc->integrated_words_even,
+                      rc->integrated_words_odd, rc->integrated_fitness_even,
+                      rc->integrated_fitness_odd, rc->integrated_first_generation,
+                      rc->postures_reach_palm_down};
   const int want[] = {ST_STAGES_INTEGRATED, cfg->network_arch, cfg->integrated_words_even,
                       cfg->integrated_words_odd, cfg->integrated_fitness_even,
                       cfg->integrated_fitness_odd, cfg->integrated_first_generation,
@@ -149,16 +145,10 @@ static stStatus same_condition(const char *dir, const stConfig *cfg, char *err, 
 /* A run made with another keying of its streams or another LCP solver than the test's config is
  * still tested (a test's trials are its own, drawn from the test's keys), but a test made before
  * the shipped configs changed these keys (2026-11-28) is repeated only with the run's: say so. */
-static void note_other_keys(const char *dir, const stConfig *cfg, FILE *f) {
+static void note_other_keys(const char *dir, const stConfig *cfg, const stConfig *rc, FILE *f) {
   if (!f) return;
-  char path[ST_PATH_MAX];
-  snprintf(path, sizeof path, "%s/config.ini", dir);
-  stConfig rc;
-  st_config_default(&rc);
-  char e[1024];
-  if (st_config_load(path, &rc, e, sizeof e)) return; /* same_condition has said why */
   static const char *const keys[][2] = {{"run", "rng_seed"}, {"dynamics", "lcp"}};
-  const int have[] = {rc.run_rng_seed, rc.dynamics_lcp};
+  const int have[] = {rc->run_rng_seed, rc->dynamics_lcp};
   const int want[] = {cfg->run_rng_seed, cfg->dynamics_lcp};
   for (int i = 0; i < (int)(sizeof have / sizeof have[0]); i++) {
     if (have[i] == want[i]) continue;
@@ -190,19 +180,26 @@ static stStatus last_best(const char *dir, int ngenes, stGenome *g, int *generat
   return ST_OK;
 }
 
-stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
-                          stPostIndividual *out, char *err, size_t errsz) {
-  ST_ASSERT(dir && cfg && out);
+/* st_post_load_run, its notes (nullable) on `note` */
+static stStatus load_run(const char *dir, const stConfig *cfg, int exclusion, FILE *note,
+                         stPostIndividual *out, char *err, size_t errsz) {
   if (!is_dir(dir))
     return st__errf(err, errsz, "%s: not a directory (expected an integrated run directory of "
                     "evolve: config.ini, fitness.csv, best.genome)", dir), ST_ERR_IO;
-  stStatus st = same_condition(dir, cfg, err, errsz);
+  char path[ST_PATH_MAX];
+  snprintf(path, sizeof path, "%s/config.ini", dir);
+  stConfig run;
+  st_config_default(&run);
+  char e[1024];
+  if (st_config_load(path, &run, e, sizeof e))
+    return st__errf(err, errsz, "integrated run %s: %s", dir, e), ST_ERR_IO;
+  stStatus st = same_condition(dir, cfg, &run, err, errsz);
+  if (!st) note_other_keys(dir, cfg, &run, note);
   stGenome g;
   int generation = -1;
   if (!st) st = last_best(dir, st_arch_ngenes((stNetArch)cfg->network_arch), &g, &generation, err, errsz);
   uint8_t success[ST_INT_MAX_TRIALS];
   int n = 0;
-  char path[ST_PATH_MAX];
   snprintf(path, sizeof path, "%s/fitness.csv", dir);
   if (!st) st = st_fitness_csv_successes(path, generation, success, ST_INT_MAX_TRIALS, &n, err, errsz);
   if (st) return st;
@@ -217,6 +214,12 @@ stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
     out->excluded = st_post_excluded(&idef, generation, success, n);
   }
   return ST_OK;
+}
+
+stStatus st_post_load_run(const char *dir, const stConfig *cfg, int exclusion,
+                          stPostIndividual *out, char *err, size_t errsz) {
+  ST_ASSERT(dir && cfg && out);
+  return load_run(dir, cfg, exclusion, NULL, out, err, errsz);
 }
 
 /* ---- the run ---- */
@@ -280,9 +283,8 @@ static stStatus load_individuals(postRun *R, char *err, size_t errsz) {
   for (int i = 0; i < d->ninputs; i++) {
     stStatus st = populations
                       ? st_post_load_population(d->inputs[i], per, ngenes, &R->ind[i * per], err, errsz)
-                      : st_post_load_run(d->inputs[i], R->cfg, exclusion, &R->ind[i], err, errsz);
+                      : load_run(d->inputs[i], R->cfg, exclusion, d->progress, &R->ind[i], err, errsz);
     if (st) return st;
-    if (!populations) note_other_keys(d->inputs[i], R->cfg, d->progress);
     for (int k = 0; k < per; k++) R->ind[i * per + k].run = i; /* the input's position */
     for (int j = 0; j < i * per; j++)
       if (!strcmp(R->ind[j].run_label, R->ind[i * per].run_label))
