@@ -192,8 +192,9 @@ if [ -z "$diffs" ]; then ok "the resumed replication's files equal the uninterru
 # make must not delete the run's population.genome, which a resume of the finished run does
 # not write again
 # (the wrapper waits until the test removes its hold file: no deadline for the test to meet)
-printf '#!/bin/sh\n"%s/apps/evolve" "$@" || exit $?\ntouch "%s/finished"\nwhile [ -e "%s/hold" ]; do sleep 0.1; done\n' \
-  "$PWD" "$tmp" "$tmp" > "$tmp/slow"
+case $APPDIR in /*) apps=$APPDIR ;; *) apps=$PWD/$APPDIR ;; esac
+printf '#!/bin/sh\n"%s/evolve" "$@" || exit $?\ntouch "%s/finished"\nwhile [ -e "%s/hold" ]; do sleep 0.1; done\n' \
+  "$apps" "$tmp" "$tmp" > "$tmp/slow"
 chmod +x "$tmp/slow"
 touch "$tmp/hold"
 setsid $REP OUT="$tmp/d" EVOLVE="$tmp/slow" "$tmp/d/prims-s1/population.genome" > "$tmp/d.out" 2>&1 &
@@ -416,6 +417,19 @@ jobs=$($REP jobs STEP=integrated OUT=x)
 if [ "$(wc -l <<< "$jobs")" = 8 ] && [ "$(sed -n 4,5p <<< "$jobs" | tr '\n' ' ')" = \
   "x/int-ni-s1/population.genome x/int-stct-s2/population.genome " ]; then
   ok "jobs STEP=integrated lists 4 conditions x 2 runs, seed by seed"; else ko "jobs STEP=integrated" "$jobs"; fi
+
+# the makefiles run the apps of the build under test (APPDIR, as tests/run_all.sh exports it:
+# make asan's tests run build-asan/apps), never ./apps of another build
+apps_run=""
+for mk in "replicate.mk OUT=$tmp/n $tmp/n/prims-s1/population.genome" "order_screen.mk OUT=$tmp/n" \
+  "screen.mk OUT=$tmp/n"; do
+  set -- $mk
+  apps_run="$apps_run $(make --no-print-directory -s -n -f "tools/$1" PRESET=tiny THREADS=1 APPDIR=/no/such \
+    "${@:2}" 2>&1 | grep -o '[^ ]*/evolve ' | head -1)"
+done
+if [ "$apps_run" = " /no/such/evolve  /no/such/evolve  /no/such/evolve " ]; then
+  ok "replicate.mk, order_screen.mk and screen.mk run APPDIR's apps"
+else ko "APPDIR's apps" "the makefiles ran:$apps_run"; fi
 
 echo "$CHECK: $pass passed, $fail failed"
 [ $fail = 0 ]

@@ -23,6 +23,9 @@ THREADS ?= 0
 EVOLVE_ARGS ?=
 ROB_ARGS ?=
 PYTHON ?= /usr/bin/python3
+# the apps of a build (make asan's tests run build-asan's; tests/run_all.sh exports APPDIR)
+APPDIR ?= apps
+APPS := $(if $(filter /%,$(APPDIR)),$(APPDIR),./$(APPDIR))
 THREADS_ARG := $(if $(filter-out 0,$(THREADS)),--threads $(THREADS))
 
 ifneq ($(filter-out stct st ct ni,$(CONDS)),)
@@ -54,13 +57,13 @@ report:
 # FORCE: evolve --resume finishes a run stopped between its population and its last checkpoint
 $(OUT)/%/population.genome: FORCE
 	@mkdir -p '$(@D)'
-	./apps/evolve 'configs/integrated_$(call word3,$*,1).cfg' --seed '$(patsubst s%,%,$(call word3,$*,3))' \
+	$(APPS)/evolve 'configs/integrated_$(call word3,$*,1).cfg' --seed '$(patsubst s%,%,$(call word3,$*,3))' \
 	  --generations '$(GENS)' --out '$(@D)' --resume $(THREADS_ARG) \
 	  --set 'integrated.trial_order=$(call word3,$*,2)' --set 'integrated.populations=$(POP)' \
 	  $(EVOLVE_ARGS) >> '$(@D).log'
 
 $(OUT)/%/robustness/summary.csv: $(OUT)/%/population.genome
-	./apps/posteval robustness 'configs/integrated_$(call word3,$*,1).cfg' '$(OUT)/$*' \
+	$(APPS)/posteval robustness 'configs/integrated_$(call word3,$*,1).cfg' '$(OUT)/$*' \
 	  --out '$(OUT)/$*/robustness' --resume $(THREADS_ARG) $(ROB_ARGS) > /dev/null
 
 FORCE:

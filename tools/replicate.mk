@@ -117,9 +117,14 @@ CONDS := stct st ct ni
 # the caretaker variants of the generalisation test (thesis §3.2.5: ST-CT0, ST0)
 CONDS0 := stct st
 SEEDS := $(shell seq 1 $(RUNS))
-EVOLVE := ./apps/evolve
-POSTEVAL := ./apps/posteval
-STATS := ./apps/stats
+# the apps and tools of a build: APPDIR and BUILD as the top Makefile names them (make asan's
+# tests run build-asan's; tests/run_all.sh exports both)
+APPDIR ?= apps
+APPS := $(if $(filter /%,$(APPDIR)),$(APPDIR),./$(APPDIR))
+BUILD ?= build
+EVOLVE := $(APPS)/evolve
+POSTEVAL := $(APPS)/posteval
+STATS := $(APPS)/stats
 THREADS_ARG := $(if $(filter-out 0,$(THREADS)),--threads $(THREADS))
 
 # The study from primitive runs that exist already (the committed ones, another machine's):
@@ -198,7 +203,7 @@ jobs:
 # one evaluation of each kind costs on this machine (build/eval_cost on COST_SAMPLE genotypes of
 # the committed runs below, CPU time on one thread; measured once per host and build, cached in
 # OUT/cost/costs.csv; REMEASURE=1 measures again), times the evaluations of each step's jobs
-EVAL_COST ?= build/eval_cost
+EVAL_COST ?= $(BUILD)/eval_cost
 COST_SAMPLE ?= 4
 COST_PRIM_POP ?= data/evolved/prims_s2/population.genome
 COST_CHAIN_POP ?= data/evolved/chain_candidates/hcg_p2_from50/checkpoint
@@ -343,7 +348,7 @@ FIG = $(PYTHON) tools/$(1).py $(2) -o '$(OUT)/figures/$(3).png' -o '$(OUT)/figur
 # trial types (trials 0-3 of its last generation, type = trial mod 4), in self talk and again
 # with the caretaker's words (replayed; the traces kept in figures/words-<cond>/, the words
 # printed into fig3_12_<cond>.txt)
-REPLAY := ./apps/replay
+REPLAY := $(APPS)/replay
 WORDS_self := --set integrated.words_even=selftalk --set integrated.fitness_even=integrated
 WORDS_care := --set integrated.words_even=caretaker --set integrated.words_odd=caretaker
 FIG3_12 := $(CONDS0:%=$(OUT)/figures/fig3_12_%.png)

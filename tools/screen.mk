@@ -20,6 +20,9 @@ SEED ?= 1
 OUT ?= runs/screen
 THREADS ?= 0
 PYTHON ?= /usr/bin/python3
+# the apps of a build (make asan's tests run build-asan's; tests/run_all.sh exports APPDIR)
+APPDIR ?= apps
+APPS := $(if $(filter /%,$(APPDIR)),$(APPDIR),./$(APPDIR))
 # SET: settings for the screen's evolution and both its integration tests alike (as
 # tools/replicate.mk's), e.g. SET='postures.reach_palm_down=0 dynamics.lcp=dense': a candidate's
 # starts are then those of its test too. A screen's directory is named after SET's values, so
@@ -102,15 +105,15 @@ report:
 	@$(PYTHON) tools/screen_report.py $(sort $(dir $(wildcard $(OUT)/*/integration/summary.csv)))
 
 $(DIR)/population.genome:
-	mkdir -p $(DIR) && set -o pipefail && ./apps/evolve configs/main_prim.cfg --seed $(SEED) \
+	mkdir -p $(DIR) && set -o pipefail && $(APPS)/evolve configs/main_prim.cfg --seed $(SEED) \
 	  --generations $(GENS) --out $(DIR) --resume $(THREADS_ARG) \
 	  --set stage.init_population=$(POPFILE) --set ga.success_genotypes=100 $(KEYS_$(CAND)) $(SET_ARGS) \
 	  2>&1 | tee -a $(DIR)/progress.log
 
 $(DIR)/integration/summary.csv: $(DIR)/population.genome
-	./apps/posteval integration configs/prims.cfg $(DIR)/population.genome --out $(DIR)/integration \
+	$(APPS)/posteval integration configs/prims.cfg $(DIR)/population.genome --out $(DIR)/integration \
 	  --resume $(THREADS_ARG) $(SET_ARGS)
 
 $(DIR)/integration-nowords/summary.csv: $(DIR)/population.genome
-	./apps/posteval integration configs/prims.cfg $(DIR)/population.genome --no-words \
+	$(APPS)/posteval integration configs/prims.cfg $(DIR)/population.genome --no-words \
 	  --out $(DIR)/integration-nowords --resume $(THREADS_ARG) $(SET_ARGS)
