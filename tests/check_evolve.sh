@@ -123,7 +123,9 @@ else ko "finished run without checkpoint" "$(cat "$tmp/fin.log")"; fi
 if "$EV" $cfg --seed 12 --generations $G --out "$tmp/k" --resume > "$tmp/diff.log" 2>&1; then
   ko "resume with another config refused" "exit 0"
 else
-  grep -q "config.ini differs" "$tmp/diff.log" && ok "resume with another config refused" || ko "resume refused" "$(cat "$tmp/diff.log")"
+  # the key that differs named, with both values and the --set that resumes
+  grep -qF "$tmp/k/config.ini has run.seed = 11, this run 12 (resume needs the same config and --set options: --set run.seed=11)" "$tmp/diff.log" &&
+    ok "resume with another config refused, naming the key and both values" || ko "resume refused" "$(cat "$tmp/diff.log")"
 fi
 
 # --generations is the run's cap key (issue 48): config.ini records the cap the run was made

@@ -276,9 +276,16 @@ static stStatus same_config(run *R, char *err, size_t errsz) {
   int *cc = R->integrated ? &cur.ga_integrated_generations : &cur.ga_max_generations;
   R->cap_changed = *oc != *cc;
   *oc = *cc;
-  if (memcmp(&old, &cur, sizeof old)) {
-    st__errf(err, errsz, "cannot resume: %s differs from this run's configuration (resume needs "
-             "the same config and --set options)", R->path[P_CONFIG]);
+  /* the first key that differs, named with both values: what the --set to add is */
+  for (int i = 0; i < st_config_nkeys(); i++) {
+    if (!st_config_key_differs(&cur, &old, i)) continue;
+    const stConfigKey *k = st_config_key(i);
+    char was[ST_CONFIG_STR_MAX], now[ST_CONFIG_STR_MAX];
+    st_config_format(&old, i, was, sizeof was);
+    st_config_format(&cur, i, now, sizeof now);
+    st__errf(err, errsz, "cannot resume: %s has %s.%s = %s, this run %s (resume needs the same "
+             "config and --set options: --set %s.%s=%s)", R->path[P_CONFIG], k->section, k->name,
+             was, now, k->section, k->name, was);
     return ST_ERR_ARG;
   }
   return ST_OK;
