@@ -97,6 +97,13 @@ grep -v ',nonincremental,' "$FIG/integration_summary.csv" > "$tmp/inc.csv"
   grep -qxF "fig_integration: chain: successes n=6 median=26.5 q1=21.25 q3=29.5 min=10 max=35" "$tmp/f33b.out" &&
   grep -qF "chain (n = 6, median 26.5)" "$tmp/f33b.svg" &&
   ok "fig3_3: two summaries, --label per file" || ko "fig3_3 --label" "$(cat "$tmp/f33b.out")"
+# two runs' tests pooled under one --label: posteval's run_label tells them apart (each is run 0)
+awk '/^#/ { print; next } !h { print $0 ",run_label"; h = 1; next } { print $0 ",chain_s1" }' "$tmp/inc.csv" > "$tmp/inc1.csv"
+awk '/^#/ { print; next } !h { print $0 ",run_label"; h = 1; next } { print $0 ",chain_s2" }' "$tmp/inc.csv" > "$tmp/inc2.csv"
+"$PY" tools/fig_integration.py "$tmp/inc1.csv" "$tmp/inc2.csv" --label chain chain -o "$tmp/f33c.svg" > "$tmp/f33c.out" 2>&1 &&
+  grep -qxF "fig_integration: chain: successes n=12 median=26.5 q1=20 q3=30 min=10 max=35" "$tmp/f33c.out" &&
+  ok "fig3_3: two runs pooled under one --label (run_label)" || ko "fig3_3 pooled" "$(cat "$tmp/f33c.out")"
+refuses "fig3_3: one run's test twice under one label" "$tmp/inc1.csv:4: chain run 0 (chain_s1) individual 0 is also at $tmp/inc1.csv:4" fig_integration.py "$tmp/inc1.csv" "$tmp/inc1.csv" --label chain chain
 refuses "fig3_3: one individual in two files" "$tmp/inc.csv:4: incremental run 0 individual 0 is also at $tmp/inc.csv:4" fig_integration.py "$tmp/inc.csv" "$tmp/inc.csv"
 refuses "fig3_3: a label short" "--label: 1 names for 2 summaries (expected one per file)" fig_integration.py "$tmp/inc.csv" "$tmp/inc.csv" --label thesis
 refuses "fig3_3: a label for two conditions" "$FIG/integration_summary.csv: conditions incremental, nonincremental (expected one with --label)" fig_integration.py "$FIG/integration_summary.csv" --label x

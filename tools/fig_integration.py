@@ -12,8 +12,10 @@ per individual, test,condition,run,individual,successes,trials,excluded,open_jum
 test "integration" are drawn (the others are skipped), their conditions free names (e.g.
 incremental, nonincremental). --label names each file's rows instead, one name per file in
 order (each file then holds one condition), so that two protocols' tests, each run with
-posteval's default condition, are drawn side by side (--label thesis chain). Every individual
-of the test has the same number of trials (40) and appears once; none is excluded. The bars
+posteval's default condition, are drawn side by side (--label thesis chain); files given the
+same label pool into one condition, each run's test told apart by its run_label (posteval's name
+of the population: --label study study for two runs' tests). Every individual of the test has
+the same number of trials (40) and appears once; none is excluded. The bars
 count the individuals whose successes fall in each bin of --bin trials (the last bin closed:
 35-40 of 40 with the default 5). Prints, per condition, n, median,
 quartiles (definition 7, as ./apps/stats), extremes and the counts per bin, then the same
@@ -93,13 +95,17 @@ def load_all(paths, labels, only=False):
         if r["trials"] != first["trials"]:
             figlib.die(f"{n}: {r['trials']} trials (expected {first['trials']}, as {where(r, first)}: "
                        "every individual of the test has the same trials)")
-        key = (r["condition"], r["run"], r["individual"])
+        # run_label (posteval's name of the population, when it has one) tells apart two runs'
+        # tests given the same --label, each of them run 0: one condition pooled from several runs
+        label = r.get("run_label", "")
+        key = (r["condition"], label, r["run"], r["individual"])
         if key in seen:
             o = seen[key]
+            run = f"run {key[2]}" + (f" ({label})" if label else "")
             if o["_file"] == r["_file"]:
-                figlib.die(f"{n}: {key[0]} run {key[1]} individual {key[2]} again (expected one row "
+                figlib.die(f"{n}: {key[0]} {run} individual {key[3]} again (expected one row "
                            f"per individual; first at {where(r, o)})")
-            figlib.die(f"{n}: {key[0]} run {key[1]} individual {key[2]} is also at {where(r, o)} "
+            figlib.die(f"{n}: {key[0]} {run} individual {key[3]} is also at {where(r, o)} "
                        "(expected each individual once; --label names each file)")
         seen[key] = r
     return rows
