@@ -2,7 +2,7 @@
 # tools/: runs_summary.py and plot_fitness.py on hand-made fitness.csv files whose answers are
 # known (which generation completes each stage, how many solved spans the plot draws), and
 # grasp_probe's trace against free fall worked out by hand, run_independence's streams,
-# trial_sweep against replay.
+# trial_sweep and word_map against replay.
 set -u
 CHECK=check_tools
 source "$(dirname "$0")/check_lib.sh"
@@ -426,6 +426,40 @@ if out=$("$ri" streams "$cfg" 2>&1) &&
 else
   ko "run_independence streams" "$out ${out2:-}"
 fi
+
+# word_map: the palm-down study's ST seed 1, trial 0 of generation 99, is replay's trial (its
+# success, steps, and at every step the label said, from replay's trace, and heard the step after);
+# among the labels it would have said, the one for the word really heard is the one said (the
+# copied state steps as the real one); a primitive stage's config refused
+wm="${BUILD:-build}/word_map"
+st1=data/evolved/study_palm_down/int-st-s1
+"$wm" $st1/config.ini $st1/best.genome --trial 0 --steps > "$t/wm" 2>&1
+"${APPDIR:-apps}/replay" $st1/best.genome $st1/config.ini --trial 0 --out "$t/wm.csv" > "$t/wm.rep" 2>&1
+if "$PY" - "$t/wm" "$t/wm.csv" "$t/wm.rep" <<'PY'
+import csv, re, sys
+wm = open(sys.argv[1]).read().splitlines()
+tr = list(csv.DictReader(open(sys.argv[2])))
+rep = open(sys.argv[3]).read()
+head = re.match(r"genotype \d+ of \S+, trial 0 of generation 99 \(words selftalk\): success (\d), (\d+) steps$", wm[0])
+want = re.search(r"success=(\d) steps=(\d+)/", rep)
+assert head and want and head.groups() == want.groups(), (wm[0], want)
+L = "-rogm"
+steps = [l.split() for l in wm if l.startswith("step ")]
+assert len(steps) == len(tr) == int(want.group(2)), (len(steps), len(tr))
+prev = "-"  # self talk: the label said at t is heard at t + 1, nothing at step 0
+for f, row in zip(steps, tr):
+    heard, said, would = f[3], f[5], f[7:]
+    assert heard == prev, (f, prev)
+    assert said == L[int(row["selftalk_label"]) + 1], (f, row["selftalk_label"])
+    prev = said
+    assert would[L.index(heard)] == said, f
+PY
+then ok "word_map: replay's trial, and the label for the word heard is the one said"
+else ko "word_map vs replay" "$(head -3 "$t/wm")"; fi
+if ! "$wm" configs/prims.cfg $st1/best.genome > /dev/null 2> "$t/wm.err" &&
+   grep -qF "configs/prims.cfg: expected an integrated stage's config with a talking network" "$t/wm.err"; then
+  ok "word_map: a primitive stage's config refused"
+else ko "word_map refusal" "$(cat "$t/wm.err")"; fi
 
 echo "check_tools: $pass passed, $fail failed"
 [ "$fail" = 0 ]
