@@ -87,24 +87,30 @@ else
   ko "replay --force" "$(cat "$tmp/rf1.txt" "$tmp/rf2.err")"
 fi
 
-# SIGKILL at several moments, resume each time; the end must equal the uninterrupted run
-for delay in 0.05 0.3 0.45; do
+# SIGKILL at several moments, resume each time; the end must equal the uninterrupted run. The
+# moments are the run's own events, however busy the machine: its config.ini written (before any
+# generation), then generation 0's and generation 2's records; the resumed run is killed once it
+# has recorded one more generation
+for lines in 0 2 4; do
   rm -rf "$tmp/k"
   "$EV" $cfg --seed 11 --generations $G --threads 2 --out "$tmp/k" > /dev/null 2>&1 &
   pid=$!
-  sleep $delay
+  if [ $lines = 0 ]; then wait_for 600 $pid test -e "$tmp/k/config.ini"
+  else wait_for 600 $pid has_lines "$tmp/k/fitness.csv" $lines; fi
   kill -9 $pid 2>/dev/null
   wait $pid 2>/dev/null
   # what a kill -9 between a temporary file's open and its rename leaves: the resume removes it
   [ -d "$tmp/k" ] && touch "$tmp/k/checkpoint.tmp.999999" "$tmp/k/fitness.csv.tmp.1"
+  more=$(lines_of "$tmp/k/fitness.csv")
+  more=$((more > 0 ? more + 1 : 2))
   "$EV" $cfg --seed 11 --generations $G --threads 2 --out "$tmp/k" --resume > "$tmp/k.log" 2>&1 &
   pid=$!
-  sleep 0.2
+  wait_for 600 $pid has_lines "$tmp/k/fitness.csv" $more
   kill -9 $pid 2>/dev/null
   wait $pid 2>/dev/null
   "$EV" $cfg --seed 11 --generations $G --threads 1 --out "$tmp/k" --resume > "$tmp/k.log" 2>&1
-  if same_files "$tmp/t1" "$tmp/k"; then ok "killed after ${delay}s and 0.2s, resumed: identical files"
-  else ko "resume after kill at ${delay}s" "$(tail -2 "$tmp/k.log")"; fi
+  if same_files "$tmp/t1" "$tmp/k"; then ok "killed at fitness.csv line $lines and once more a generation on, resumed: identical files"
+  else ko "resume after kill at fitness.csv line $lines" "$(tail -2 "$tmp/k.log")"; fi
 done
 
 "$EV" $cfg --seed 11 --generations $G --out "$tmp/t1" --resume > "$tmp/done.log" 2>&1

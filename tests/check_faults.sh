@@ -82,8 +82,9 @@ if [ $can_mount = 1 ]; then
   touch "$tmp/hold"
   run_bg "$tmp/ro/run" "${held[@]}"
   wait_held "$tmp/ro/run"
-  # the remount waits for a moment no file is open for writing
-  for _ in $(seq 400); do mount -o remount,ro "$tmp/ro" 2> /dev/null && break; sleep 0.005; done
+  # the remount waits for a moment no file is open for writing (the held run has none open)
+  remount_ro() { mount -o remount,ro "$tmp/ro" 2> /dev/null; }
+  wait_for 600 $pid remount_ro
   release
   wait $pid; rc=$?
   mount -o remount,rw "$tmp/ro"

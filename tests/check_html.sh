@@ -119,7 +119,7 @@ fi
 # software WebGL (SwiftShader), the browser's own background requests off, a fresh profile
 browse() {
   local name=$1 url=$2; shift 2
-  timeout 120 "$BROWSER" --headless --no-sandbox --disable-gpu --enable-unsafe-swiftshader \
+  timeout 600 "$BROWSER" --headless --no-sandbox --disable-gpu --enable-unsafe-swiftshader \
     --hide-scrollbars --window-size=1200,800 --virtual-time-budget=5000 --no-first-run \
     --disable-background-networking --disable-component-update --disable-sync \
     --user-data-dir="$tmp/profile-$name" "$@" --screenshot="$tmp/$name.png" --dump-dom "$url" \

@@ -82,11 +82,11 @@ expect "stage.init_population: a missing file names the key" \
   "$EV" $cfg --out "$tmp/k1" --set stage.init_population=1e
 expect "stage.init_population=/dev/zero refused at the size limit" \
   "key 'stage.init_population': /dev/zero: larger than 64 MiB (expected an input file of at most 67108864 bytes)" \
-  "$tmp/k2" timeout 20 "$EV" $cfg --out "$tmp/k2" --set stage.init_population=/dev/zero
+  "$tmp/k2" timeout 600 "$EV" $cfg --out "$tmp/k2" --set stage.init_population=/dev/zero
 expect "robot.urdf: a missing file names the key" "key 'robot.urdf': $tmp/none.urdf: cannot open" "$tmp/k3" \
   "$EV" $cfg --out "$tmp/k3" --set robot.urdf="$tmp/none.urdf"
 expect "a config file that never ends refused" "/dev/zero: larger than 64 MiB" "$tmp/k4" \
-  timeout 20 "$EV" /dev/zero --out "$tmp/k4"
+  timeout 600 "$EV" /dev/zero --out "$tmp/k4"
 
 # URDFs the world cannot simulate, refused at load in every mode: the shipped arm with one
 # element broken (a zero-length cylinder aborted libccd even in kinematic mode)

@@ -140,10 +140,12 @@ else ko "thread independence"; fi
 
 # killed, resumed (twice): the files of the uninterrupted run
 "$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 3 --threads 1 --out "$tmp/full" > /dev/null 2>&1
+# (killed at the run's own events, however busy the machine: after generation 0's record, then
+# the resumed run after generation 1's)
 "$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 3 --threads 1 --out "$tmp/k" > /dev/null 2>&1 &
-pid=$!; sleep 1.3; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+pid=$!; wait_for 600 $pid has_lines "$tmp/k/fitness.csv" 2; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
 "$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 3 --threads 2 --out "$tmp/k" --resume > /dev/null 2>&1 &
-pid=$!; sleep 0.6; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+pid=$!; wait_for 600 $pid has_lines "$tmp/k/fitness.csv" 3; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
 "$EV" configs/integrated_stct.cfg "${tiny[@]}" --generations 3 --threads 1 --out "$tmp/k" --resume > "$tmp/k.log" 2>&1
 if same_files "$tmp/full" "$tmp/k"; then ok "killed twice and resumed: identical files"
 else ko "resume" "$(tail -2 "$tmp/k.log")"; fi

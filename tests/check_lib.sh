@@ -20,6 +20,17 @@ wait_for() { # TIMEOUT PID CMD...
   done
 }
 
+# FILE exists and has at least N lines (a run's fitness.csv: its header and N - 1 generations;
+# written whole, by rename, so never read half way)
+has_lines() { # FILE N
+  [ -e "$1" ] && [ "$(wc -l < "$1")" -ge "$2" ]
+}
+
+# the lines of FILE, 0 when it does not exist
+lines_of() { # FILE
+  if [ -e "$1" ]; then wc -l < "$1"; else echo 0; fi
+}
+
 # the five files of two run directories are identical
 same_files() { # DIR1 DIR2: the five files byte for byte, and no temporary file left in DIR2
   for f in config.ini fitness.csv best.genome population.genome checkpoint; do

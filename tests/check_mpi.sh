@@ -73,7 +73,7 @@ if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_RO
 # pipeline, SIGPIPE, however well the line matched)
 if ! "$EV" --help 2>&1 | grep "built with MPI" > /dev/null; then
   # an evolve without MPI under mpirun refuses (every rank would run the whole evolution)
-  timeout -k 10 60 mpirun -q --oversubscribe -n 2 "$EV" $cfg --out "$tmp/nompi" > /dev/null 2> "$tmp/nompi.err"; rc=$?
+  timeout -k 10 600 mpirun -q --oversubscribe -n 2 "$EV" $cfg --out "$tmp/nompi" > /dev/null 2> "$tmp/nompi.err"; rc=$?
   if [ $rc != 0 ] && [ ! -e "$tmp/nompi" ] && [ "$(grep -c "started as 2 MPI ranks, but built without MPI" "$tmp/nompi.err")" = 1 ]; then
     ok "an evolve built without MPI refuses to run as several ranks"
   else
@@ -90,7 +90,7 @@ if ldd "$EV" 2> /dev/null | grep libasan > /dev/null; then
   mpienv=(env "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0:verify_asan_link_order=0")
 fi
 # -q: OpenMPI's own notices; a bound on the time (a hang must fail the check, not the suite)
-mpirun_() { timeout -k 10 300 ${mpienv[@]+"${mpienv[@]}"} mpirun -q --oversubscribe "$@"; }
+mpirun_() { timeout -k 10 600 ${mpienv[@]+"${mpienv[@]}"} mpirun -q --oversubscribe "$@"; }
 mpi() { # NP ARGS...: evolve on NP ranks
   local np=$1; shift
   mpirun_ -n "$np" "$EV" "$@"
