@@ -23,9 +23,7 @@ THREADS ?= 0
 EVOLVE_ARGS ?=
 ROB_ARGS ?=
 PYTHON ?= /usr/bin/python3
-# the apps of a build (make asan's tests run build-asan's; tests/run_all.sh exports APPDIR)
-APPDIR ?= apps
-APPS := $(if $(filter /%,$(APPDIR)),$(APPDIR),./$(APPDIR))
+include $(dir $(lastword $(MAKEFILE_LIST)))apps.mk
 THREADS_ARG := $(if $(filter-out 0,$(THREADS)),--threads $(THREADS))
 
 ifneq ($(filter-out stct st ct ni,$(CONDS)),)

@@ -117,10 +117,8 @@ CONDS := stct st ct ni
 # the caretaker variants of the generalisation test (thesis §3.2.5: ST-CT0, ST0)
 CONDS0 := stct st
 SEEDS := $(shell seq 1 $(RUNS))
-# the apps and tools of a build: APPDIR and BUILD as the top Makefile names them (make asan's
-# tests run build-asan's; tests/run_all.sh exports both)
-APPDIR ?= apps
-APPS := $(if $(filter /%,$(APPDIR)),$(APPDIR),./$(APPDIR))
+# the apps and tools of a build (tools/apps.mk; BUILD as the top Makefile names it)
+include $(dir $(lastword $(MAKEFILE_LIST)))apps.mk
 BUILD ?= build
 EVOLVE := $(APPS)/evolve
 POSTEVAL := $(APPS)/posteval

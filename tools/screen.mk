@@ -20,9 +20,7 @@ SEED ?= 1
 OUT ?= runs/screen
 THREADS ?= 0
 PYTHON ?= /usr/bin/python3
-# the apps of a build (make asan's tests run build-asan's; tests/run_all.sh exports APPDIR)
-APPDIR ?= apps
-APPS := $(if $(filter /%,$(APPDIR)),$(APPDIR),./$(APPDIR))
+include $(dir $(lastword $(MAKEFILE_LIST)))apps.mk
 # SET: settings for the screen's evolution and both its integration tests alike (as
 # tools/replicate.mk's), e.g. SET='postures.reach_palm_down=0 dynamics.lcp=dense': a candidate's
 # starts are then those of its test too. A screen's directory is named after SET's values, so

@@ -43,7 +43,8 @@ static void die(const char *fmt, const char *a) {
 
 /* the network controller, with each step's counterfactual labels before its real step */
 typedef struct mapCtl {
-  stNetController inner;
+  stNetController inner; /* the network's controller: its state, reset and real steps */
+  stController net;
   double scale; /* input value of a heard word (network.linguistic_input) */
   int nsteps, cap;
   int (*would)[NHEAR]; /* [step][h]: label said hearing h - 1 (h = 0: nothing) */
@@ -52,8 +53,7 @@ typedef struct mapCtl {
 
 static void map_reset(void *self, const stEpisodeSpec *e) {
   mapCtl *m = self;
-  stController c = st_net_controller(&m->inner, m->inner.net, NULL, 0);
-  c.reset(c.self, e);
+  m->net.reset(m->net.self, e);
   m->nsteps = 0;
 }
 
@@ -66,9 +66,6 @@ static int heard_in(const double *in) {
 
 static void map_act(void *self, const stWorld *w, const stQuantities *q, const double *in, int step,
                     double *out) {
-  (void)w;
-  (void)q;
-  (void)step;
   mapCtl *m = self;
   const int n = st_net_ninputs(m->inner.net->arch);
   double alt[ST_NET_NIN + 1]; /* type A: the base network's inputs and the secondary one */
@@ -81,7 +78,7 @@ static void map_act(void *self, const stWorld *w, const stQuantities *q, const d
     st_net_step(m->inner.net, &s, alt, NULL);
     m->would[m->nsteps][h] = st_net_selftalk_label(&s);
   }
-  st_net_step(m->inner.net, &m->inner.state, in, out);
+  m->net.act(m->net.self, w, q, in, step, out);
   m->heard[m->nsteps] = heard_in(in);
   m->said[m->nsteps] = st_net_selftalk_label(&m->inner.state);
   m->nsteps++;
@@ -141,9 +138,9 @@ int main(int argc, char **argv) {
   m.heard = calloc((size_t)m.cap, sizeof *m.heard);
   m.said = calloc((size_t)m.cap, sizeof *m.said);
   if (!m.would || !m.heard || !m.said) die("%s", "out of memory");
-  st_net_controller(&m.inner, &np, NULL, 0);
-  const stController ctl = {map_reset, map_act, st_net_ninputs(ST_ARCH_A), &m,
-                            st_net_noutputs(ST_ARCH_A), 1, NULL};
+  m.net = st_net_controller(&m.inner, &np, NULL, 0);
+  const stController ctl = {map_reset, map_act, m.net.ninputs, &m, m.net.noutputs, m.net.talks,
+                            NULL};
   const stIntPlan plan = st_integrated_plan(&def, generation, trial);
   stEpisodeSpec e;
   st_int_trial(p, &def, generation, index, trial, &e);

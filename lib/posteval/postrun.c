@@ -112,12 +112,10 @@ static void choice_name(const char *section, const char *name, int v, char *buf,
   else snprintf(buf, n, "%s", v ? "true" : "false");
 }
 
-/* the run's config.ini (dir's, read into rc) has the condition of cfg (Table 2.1's keys) and its
+/* the run's config.ini (path, read into rc) has the condition of cfg (Table 2.1's keys) and its
  * reach starts (the post-evaluations start from the integrated stage's reach postures) */
-static stStatus same_condition(const char *dir, const stConfig *cfg, const stConfig *rc,
+static stStatus same_condition(const char *path, const stConfig *cfg, const stConfig *rc,
                                char *err, size_t errsz) {
-  char path[ST_PATH_MAX];
-  snprintf(path, sizeof path, "%s/config.ini", dir);
   static const char *const keys[][2] = {
       {"stage", "stages"},           {"network", "arch"},       {"integrated", "words_even"},
       {"integrated", "words_odd"},   {"integrated", "fitness_even"}, {"integrated", "fitness_odd"},
@@ -193,7 +191,7 @@ static stStatus load_run(const char *dir, const stConfig *cfg, int exclusion, FI
   char e[1024];
   if (st_config_load(path, &run, e, sizeof e))
     return st__errf(err, errsz, "integrated run %s: %s", dir, e), ST_ERR_IO;
-  stStatus st = same_condition(dir, cfg, &run, err, errsz);
+  stStatus st = same_condition(path, cfg, &run, err, errsz);
   if (!st) note_other_keys(dir, cfg, &run, note);
   stGenome g;
   int generation = -1;
